@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   Params.h
+ * @brief  All parameters of Height Interval Filtering, with the paper's defaults.
+ *
+ * Equation numbers refer to "HIF: Height Interval Filtering for Efficient Dynamic Points
+ * Removal" (see doc/algorithm.md, which also explains every choice the paper leaves open).
+ */
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+namespace hif
+{
+/** Parameters of the HIF map. Probabilities are P(static) = P(occupied by something that
+ *  stays), as in the paper. Call validate() before use; PillarGrid does it in its constructor. */
+struct Params
+{
+    /** Pillar edge length in x and y, metres (Eq. 1-2; paper: 1 m). */
+    double pillar_size = 1.0;
+    /** Global grid origin O = (x_o, y_o) on the XY plane, metres (Eq. 1). */
+    double origin_x = 0.0;
+    double origin_y = 0.0;
+
+    /** Vertical resolution, metres: interval endpoints are snapped to multiples of it, so an
+     *  interval is a run of whole height cells [b, t). Not in the paper (which keeps exact
+     *  heights); with it, overlap tests are exact and intervals per pillar are bounded. */
+    double height_resolution = 0.05;
+    /** Heights of one pillar in one scan whose gap is at most this are merged into one interval
+     *  (Eq. 4 construction; not specified by the paper), metres. */
+    double merge_gap = 0.1;
+    /** Each scan interval is widened by this much below and above, metres, so that a surface
+     *  hit at slightly different heights from scan to scan overlaps itself. */
+    double interval_padding = 0.05;
+
+    /** Observation model of the binary Bayes filter (Eq. 6): P_S = alpha, P_D = beta when an
+     *  interval is observed; 1 - alpha, 1 - beta otherwise. Paper: alpha > 0.5, beta < 0.5. */
+    double alpha = 0.6;
+    double beta = 0.45;
+    /** Clipping of every probability after an update (Eq. 17-18; paper: [0.1, 0.9]). */
+    double p_min = 0.1;
+    double p_max = 0.9;
+    /** p_empty of a pillar seen for the first time (Eq. 4); 0.5 = no prior knowledge. */
+    double p_empty_init = 0.5;
+
+    /** Low-Height Preservation (Eq. 15-16): an interval unobserved by a scan keeps its
+     *  probability when it lies entirely below the lowest height the scan saw in the pillar. */
+    bool low_height_preservation = true;
+
+    /** A point is static when the interval it falls in has P(static) >= this. */
+    double static_threshold = 0.5;
+
+    /** Upper bound on intervals per pillar. Touching intervals of equal probability are always
+     *  merged (lossless); above this count, the closest neighbours are merged too (lossy). */
+    std::size_t max_intervals_per_pillar = 32;
+
+    /** Throws std::invalid_argument naming the first invalid field and its value. */
+    void validate() const;
+
+    /** Field-by-field equality (exact). */
+    friend bool operator==(const Params& a, const Params& b);
+    friend bool operator!=(const Params& a, const Params& b) { return !(a == b); }
+};
+
+}  // namespace hif

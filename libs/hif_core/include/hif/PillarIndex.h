@@ -1,0 +1,81 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   PillarIndex.h
+ * @brief  Pillar index (m, n) on the global grid, its exact 64-bit key and its hash (Eq. 1-3).
+ */
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+
+namespace hif
+{
+/** Index (m, n) of pillar P_mn, which covers [x_o + m dx, x_o + (m+1) dx) x
+ *  [y_o + n dy, y_o + (n+1) dy) (Eq. 2). */
+struct PillarIndex
+{
+    int32_t m = 0;
+    int32_t n = 0;
+
+    friend bool operator==(const PillarIndex& a, const PillarIndex& b)
+    {
+        return a.m == b.m && a.n == b.n;
+    }
+    friend bool operator!=(const PillarIndex& a, const PillarIndex& b) { return !(a == b); }
+};
+
+/** Exact key: (uint32)m in the high half, (uint32)n in the low half. Injective. */
+[[nodiscard]] inline uint64_t packKey(PillarIndex idx)
+{
+    return (static_cast<uint64_t>(static_cast<uint32_t>(idx.m)) << 32) |
+           static_cast<uint64_t>(static_cast<uint32_t>(idx.n));
+}
+
+[[nodiscard]] inline PillarIndex unpackKey(uint64_t key)
+{
+    return {static_cast<int32_t>(static_cast<uint32_t>(key >> 32)),
+            static_cast<int32_t>(static_cast<uint32_t>(key & 0xffffffffu))};
+}
+
+/** Eq. 3: H = h(m) xor (h(n) + C + (h(m) << 6) + (h(m) >> 2)), with h a 64-bit integer
+ *  finalizer (splitmix64) and C the 64-bit golden-ratio constant. All 64 bits are mixed, so
+ *  power-of-two tables see no clustering. Map equality always uses packKey(), never this. */
+[[nodiscard]] inline uint64_t mixInt(uint64_t x)
+{
+    x += 0x9e3779b97f4a7c15ull;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+}
+
+[[nodiscard]] inline uint64_t pillarHash(PillarIndex idx)
+{
+    constexpr uint64_t kGolden = 0x9e3779b97f4a7c15ull;
+    const uint64_t hm = mixInt(static_cast<uint32_t>(idx.m));
+    const uint64_t hn = mixInt(static_cast<uint32_t>(idx.n));
+    return hm ^ (hn + kGolden + (hm << 6) + (hm >> 2));
+}
+
+/** Hash functor over packed keys, for flat hash maps keyed by packKey(). */
+struct PackedKeyHash
+{
+    std::size_t operator()(uint64_t key) const
+    {
+        return static_cast<std::size_t>(pillarHash(unpackKey(key)));
+    }
+};
+
+/** Eq. 1: m = floor((x - x_o) / dx). Returns nullopt when the result does not fit in int32
+ *  (or the input is not finite), so callers can count and skip such points. */
+[[nodiscard]] inline std::optional<int32_t> quantize(double v, double origin, double size)
+{
+    const double q = std::floor((v - origin) / size);
+    if (!(q >= static_cast<double>(std::numeric_limits<int32_t>::min()) &&
+          q <= static_cast<double>(std::numeric_limits<int32_t>::max())))
+        return std::nullopt;
+    return static_cast<int32_t>(q);
+}
+
+}  // namespace hif

@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   Params.cpp
+ * @brief  Validation of hif::Params.
+ */
+#include "hif/Params.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace hif
+{
+namespace
+{
+template <typename T>
+[[noreturn]] void fail(const char* field, T value, const char* requirement)
+{
+    std::ostringstream os;
+    os << "hif::Params: invalid " << field << " = " << value << " (must be " << requirement
+       << ")";
+    throw std::invalid_argument(os.str());
+}
+
+void requireFinite(const char* field, double v)
+{
+    if (!std::isfinite(v)) fail(field, v, "a finite number");
+}
+}  // namespace
+
+void Params::validate() const
+{
+    requireFinite("pillar_size", pillar_size);
+    if (!(pillar_size > 0.0)) fail("pillar_size", pillar_size, "> 0");
+    requireFinite("origin_x", origin_x);
+    requireFinite("origin_y", origin_y);
+    requireFinite("height_resolution", height_resolution);
+    if (!(height_resolution > 0.0)) fail("height_resolution", height_resolution, "> 0");
+    requireFinite("merge_gap", merge_gap);
+    if (!(merge_gap >= 0.0)) fail("merge_gap", merge_gap, ">= 0");
+    requireFinite("interval_padding", interval_padding);
+    if (!(interval_padding >= 0.0)) fail("interval_padding", interval_padding, ">= 0");
+    if (!(alpha > 0.5 && alpha < 1.0)) fail("alpha", alpha, "in (0.5, 1)");
+    if (!(beta > 0.0 && beta < 0.5)) fail("beta", beta, "in (0, 0.5)");
+    if (!(p_min > 0.0 && p_min < 1.0)) fail("p_min", p_min, "in (0, 1)");
+    if (!(p_max > 0.0 && p_max < 1.0)) fail("p_max", p_max, "in (0, 1)");
+    if (!(p_min < p_max)) fail("p_min", p_min, "< p_max");
+    if (!(p_empty_init >= p_min && p_empty_init <= p_max))
+        fail("p_empty_init", p_empty_init, "in [p_min, p_max]");
+    if (!(static_threshold > 0.0 && static_threshold < 1.0))
+        fail("static_threshold", static_threshold, "in (0, 1)");
+    if (max_intervals_per_pillar < 1)
+        fail("max_intervals_per_pillar", max_intervals_per_pillar, ">= 1");
+}
+
+bool operator==(const Params& a, const Params& b)
+{
+    return a.pillar_size == b.pillar_size && a.origin_x == b.origin_x &&
+           a.origin_y == b.origin_y && a.height_resolution == b.height_resolution &&
+           a.merge_gap == b.merge_gap && a.interval_padding == b.interval_padding &&
+           a.alpha == b.alpha && a.beta == b.beta && a.p_min == b.p_min && a.p_max == b.p_max &&
+           a.p_empty_init == b.p_empty_init &&
+           a.low_height_preservation == b.low_height_preservation &&
+           a.static_threshold == b.static_threshold &&
+           a.max_intervals_per_pillar == b.max_intervals_per_pillar;
+}
+
+}  // namespace hif

@@ -1,0 +1,163 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   Pillar.cpp
+ * @brief  Interval construction and the per-pillar Bayes update (Eq. 4, 8-18).
+ */
+#include "hif/Pillar.h"
+
+#include <algorithm>
+#include <limits>
+
+namespace hif
+{
+LogOddsModel LogOddsModel::fromParams(const Params& p)
+{
+    LogOddsModel m;
+    m.hit = static_cast<float>(std::log(p.alpha / p.beta));
+    m.miss = static_cast<float>(std::log((1.0 - p.alpha) / (1.0 - p.beta)));
+    m.lmin = static_cast<float>(logit(p.p_min));
+    m.lmax = static_cast<float>(logit(p.p_max));
+    m.empty_init = static_cast<float>(logit(p.p_empty_init));
+    m.lhp = p.low_height_preservation;
+    return m;
+}
+
+void buildSpans(const int32_t* cells, std::size_t n, int32_t gap_cells, int32_t pad_cells,
+                std::vector<Span>& out)
+{
+    out.clear();
+    if (n == 0) return;
+    // Work in int64 so padding near the int32 limits cannot overflow; spans are clamped back.
+    constexpr int64_t kLo = std::numeric_limits<int32_t>::min();
+    constexpr int64_t kHi = std::numeric_limits<int32_t>::max();
+    auto emit = [&](int64_t lo, int64_t hi)
+    {
+        lo = std::max(kLo, lo - pad_cells);
+        hi = std::min(kHi, hi + pad_cells);
+        if (!out.empty() && out.back().hi >= lo)
+            out.back().hi = static_cast<int32_t>(std::max<int64_t>(out.back().hi, hi));
+        else
+            out.push_back({static_cast<int32_t>(lo), static_cast<int32_t>(hi)});
+    };
+    int64_t lo = cells[0];
+    int64_t last = cells[0];
+    for (std::size_t i = 1; i < n; ++i)
+    {
+        const int64_t c = cells[i];
+        // Cells last and c leave (c - last - 1) empty cells between them.
+        if (c - last - 1 > gap_cells)
+        {
+            emit(lo, last + 1);
+            lo = c;
+        }
+        last = c;
+    }
+    emit(lo, last + 1);
+}
+
+void updatePillar(Pillar& g, const Span* t, std::size_t nt, const LogOddsModel& model,
+                  std::size_t max_intervals, std::vector<Interval>& out)
+{
+    const float empty_prior = g.logodds_empty;
+    const std::vector<Interval>& gi = g.intervals;
+    const std::size_t ng = gi.size();
+    // LHP (Eq. 15): b_base is the lowest height the scan saw in this pillar.
+    const int32_t base = nt > 0 ? t[0].lo : std::numeric_limits<int32_t>::max();
+
+    out.clear();
+    auto emit = [&](int32_t lo, int32_t hi, float l)
+    {
+        l = model.clamp(l);  // Eq. 17-18
+        if (!out.empty() && out.back().hi == lo && out.back().logodds == l)
+            out.back().hi = hi;  // lossless: both halves carry the same belief
+        else
+            out.push_back({lo, hi, l});
+    };
+
+    // Sweep over the sorted endpoints of both sets (Eq. 9): between two consecutive endpoints
+    // [x, next) coverage by g and by t is constant, so each step is one h_k^new of Eq. 10, and
+    // it lies inside at most one g interval and one t span (Eq. 11 sets have <= 1 element).
+    std::size_t i = 0, j = 0;
+    int64_t x = std::numeric_limits<int64_t>::max();
+    if (ng > 0) x = gi[0].lo;
+    if (nt > 0) x = std::min<int64_t>(x, t[0].lo);
+    for (;;)
+    {
+        while (i < ng && gi[i].hi <= x) ++i;
+        while (j < nt && t[j].hi <= x) ++j;
+        if (i == ng && j == nt) break;
+        const bool in_g = i < ng && gi[i].lo <= x;
+        const bool in_t = j < nt && t[j].lo <= x;
+        int64_t next = std::numeric_limits<int64_t>::max();
+        if (i < ng) next = std::min<int64_t>(next, in_g ? gi[i].hi : gi[i].lo);
+        if (j < nt) next = std::min<int64_t>(next, in_t ? t[j].hi : t[j].lo);
+        const auto lo = static_cast<int32_t>(x);
+        const auto hi = static_cast<int32_t>(next);
+        if (in_g && in_t)
+            emit(lo, hi, gi[i].logodds + model.hit);  // Eq. 12: seen again
+        else if (in_g)
+        {
+            if (model.lhp && hi <= base)
+                emit(lo, hi, gi[i].logodds);  // Eq. 16: below b_base, unknown: keep
+            else
+                emit(lo, hi, gi[i].logodds + model.miss);  // Eq. 13: expected, not seen
+        }
+        else if (in_t)
+            emit(lo, hi, empty_prior + model.hit);  // Eq. 14: new, prior p_empty
+        // neither: not covered by any observation, discarded.
+        x = next;
+    }
+    if (out.size() > max_intervals) capIntervals(out, max_intervals);
+    g.intervals.swap(out);
+    g.logodds_empty = model.clamp(empty_prior + model.miss);  // Eq. 8
+}
+
+void capIntervals(std::vector<Interval>& iv, std::size_t max_intervals)
+{
+    while (iv.size() > max_intervals && iv.size() > 1)
+    {
+        std::size_t best = 0;
+        int64_t best_gap = std::numeric_limits<int64_t>::max();
+        float best_dl = std::numeric_limits<float>::max();
+        for (std::size_t k = 0; k + 1 < iv.size(); ++k)
+        {
+            const int64_t gap = static_cast<int64_t>(iv[k + 1].lo) - iv[k].hi;
+            const float dl = std::abs(iv[k + 1].logodds - iv[k].logodds);
+            if (gap < best_gap || (gap == best_gap && dl < best_dl))
+            {
+                best = k;
+                best_gap = gap;
+                best_dl = dl;
+            }
+        }
+        Interval& a = iv[best];
+        const Interval& b = iv[best + 1];
+        const double wa = static_cast<double>(a.hi) - a.lo;
+        const double wb = static_cast<double>(b.hi) - b.lo;
+        a.logodds = static_cast<float>((wa * a.logodds + wb * b.logodds) / (wa + wb));
+        a.hi = b.hi;
+        iv.erase(iv.begin() + static_cast<std::ptrdiff_t>(best) + 1);
+    }
+    // A merge can make a new neighbour pair touch with equal log-odds: restore the invariant.
+    std::size_t w = 0;
+    for (std::size_t k = 1; k < iv.size(); ++k)
+    {
+        if (iv[w].hi == iv[k].lo && iv[w].logodds == iv[k].logodds)
+            iv[w].hi = iv[k].hi;
+        else
+            iv[++w] = iv[k];
+    }
+    if (!iv.empty()) iv.resize(w + 1);
+}
+
+const Interval* findInterval(const Pillar& p, int32_t z)
+{
+    const auto& iv = p.intervals;
+    // First interval with hi > z; it contains z iff its lo <= z.
+    auto it = std::upper_bound(iv.begin(), iv.end(), z,
+                               [](int32_t v, const Interval& a) { return v < a.hi; });
+    if (it != iv.end() && it->lo <= z) return &*it;
+    return nullptr;
+}
+
+}  // namespace hif

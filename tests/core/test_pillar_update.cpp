@@ -1,0 +1,307 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   test_pillar_update.cpp
+ * @brief  Eq. 4-18 with hand-computed numbers: interval construction, the Bayes filter, the
+ *         three overlap cases, LHP, clipping, p_empty, the lossless merge and the bound.
+ */
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "hif/Pillar.h"
+#include "hif/PillarGrid.h"
+
+using namespace hif;
+
+namespace
+{
+constexpr double kTol = 1e-6;
+
+double probOf(const Interval& iv) { return logistic(iv.logodds); }
+
+Interval iv(int32_t lo, int32_t hi, double p)
+{
+    return {lo, hi, static_cast<float>(logit(p))};
+}
+
+Pillar pillar(double p_empty, std::vector<Interval> ivs)
+{
+    Pillar p;
+    p.logodds_empty = static_cast<float>(logit(p_empty));
+    p.intervals = std::move(ivs);
+    return p;
+}
+
+// alpha 0.6, beta 0.45 (defaults); LHP as given.
+LogOddsModel model(bool lhp = true)
+{
+    Params p;
+    p.low_height_preservation = lhp;
+    return LogOddsModel::fromParams(p);
+}
+
+void update(Pillar& g, const std::vector<Span>& t, bool lhp = true, std::size_t cap = 1000)
+{
+    std::vector<Interval> scratch;
+    updatePillar(g, t.data(), t.size(), model(lhp), cap, scratch);
+}
+}  // namespace
+
+TEST(BayesFilter, Eq5HandNumbers)
+{
+    // 0.6 * 0.5 / (0.6 * 0.5 + 0.45 * 0.5) = 0.3 / 0.525
+    EXPECT_NEAR(bayesFilter(0.5, 0.6, 0.45), 0.571428571, 1e-9);
+    // Eq. 8 / 13: 0.4 * 0.5 / (0.4 * 0.5 + 0.55 * 0.5) = 0.2 / 0.475
+    EXPECT_NEAR(bayesFilter(0.5, 0.4, 0.55), 0.421052632, 1e-9);
+    // Log-odds form used by the code is the same function.
+    const LogOddsModel m = model();
+    for (double p : {0.1, 0.3, 0.5, 0.77})
+    {
+        EXPECT_NEAR(logistic(logit(p) + m.hit), bayesFilter(p, 0.6, 0.45), kTol);
+        EXPECT_NEAR(logistic(logit(p) + m.miss), bayesFilter(p, 0.4, 0.55), kTol);
+    }
+}
+
+TEST(BuildSpans, MergesByGapAndPads)
+{
+    const std::vector<int32_t> cells = {0, 1, 2, 5, 6, 20};
+    std::vector<Span> s;
+    buildSpans(cells.data(), cells.size(), 0, 0, s);
+    EXPECT_EQ(s, (std::vector<Span>{{0, 3}, {5, 7}, {20, 21}}));
+    buildSpans(cells.data(), cells.size(), 1, 0, s);  // gap of 2 empty cells > 1
+    EXPECT_EQ(s, (std::vector<Span>{{0, 3}, {5, 7}, {20, 21}}));
+    buildSpans(cells.data(), cells.size(), 2, 0, s);  // 3,4 empty: merged
+    EXPECT_EQ(s, (std::vector<Span>{{0, 7}, {20, 21}}));
+    buildSpans(cells.data(), cells.size(), 0, 1, s);  // padding joins [−1,4) and [4,8)
+    EXPECT_EQ(s, (std::vector<Span>{{-1, 8}, {19, 22}}));
+    const std::vector<int32_t> dup = {3, 3, 3};
+    buildSpans(dup.data(), dup.size(), 0, 0, s);
+    EXPECT_EQ(s, (std::vector<Span>{{3, 4}}));
+}
+
+TEST(PillarUpdate, Case1SeenAgainIncreases_Eq12)
+{
+    Pillar g = pillar(0.5, {iv(0, 10, 0.5)});
+    update(g, {{0, 10}});
+    ASSERT_EQ(g.intervals.size(), 1u);
+    EXPECT_EQ(g.intervals[0].lo, 0);
+    EXPECT_EQ(g.intervals[0].hi, 10);
+    EXPECT_NEAR(probOf(g.intervals[0]), 0.571428571, kTol);
+}
+
+TEST(PillarUpdate, Case2NotSeenDecreases_Eq13)
+{
+    Pillar g = pillar(0.5, {iv(0, 10, 0.5), iv(20, 30, 0.5)});
+    update(g, {{0, 10}});
+    ASSERT_EQ(g.intervals.size(), 2u);
+    EXPECT_NEAR(probOf(g.intervals[0]), 0.571428571, kTol);
+    EXPECT_NEAR(probOf(g.intervals[1]), 0.421052632, kTol);
+}
+
+TEST(PillarUpdate, Case3NewStartsFromPEmpty_Eq14)
+{
+    Pillar g = pillar(0.3, {});
+    update(g, {{0, 10}});
+    ASSERT_EQ(g.intervals.size(), 1u);
+    // 0.6 * 0.3 / (0.6 * 0.3 + 0.45 * 0.7) = 0.18 / 0.495
+    EXPECT_NEAR(probOf(g.intervals[0]), 0.363636364, kTol);
+    // Eq. 8: 0.4 * 0.3 / (0.4 * 0.3 + 0.55 * 0.7) = 0.12 / 0.505
+    EXPECT_NEAR(logistic(g.logodds_empty), 0.237623762, kTol);
+}
+
+TEST(PillarUpdate, NeitherIsDiscarded_Eq11)
+{
+    Pillar g = pillar(0.5, {iv(0, 5, 0.7)});
+    update(g, {{10, 15}}, /*lhp=*/false);
+    ASSERT_EQ(g.intervals.size(), 2u);
+    EXPECT_EQ(g.intervals[0].hi, 5);
+    EXPECT_EQ(g.intervals[1].lo, 10);  // nothing kept in [5, 10)
+}
+
+TEST(PillarUpdate, PartialOverlapSplitsAtEveryEndpoint_Eq9_10)
+{
+    // g [0,10) p=0.7, t [5,15): [0,5) not seen, [5,10) seen, [10,15) new.
+    Pillar g = pillar(0.5, {iv(0, 10, 0.7)});
+    update(g, {{5, 15}}, /*lhp=*/false);
+    ASSERT_EQ(g.intervals.size(), 3u);
+    EXPECT_EQ(g.intervals[0].lo, 0);
+    EXPECT_EQ(g.intervals[0].hi, 5);
+    EXPECT_EQ(g.intervals[1].lo, 5);
+    EXPECT_EQ(g.intervals[1].hi, 10);
+    EXPECT_EQ(g.intervals[2].lo, 10);
+    EXPECT_EQ(g.intervals[2].hi, 15);
+    EXPECT_NEAR(probOf(g.intervals[0]), 0.28 / 0.445, kTol);   // 0.4*0.7/(0.28+0.55*0.3)
+    EXPECT_NEAR(probOf(g.intervals[1]), 0.42 / 0.555, kTol);   // 0.6*0.7/(0.42+0.45*0.3)
+    EXPECT_NEAR(probOf(g.intervals[2]), 0.571428571, kTol);    // from p_empty 0.5
+}
+
+TEST(PillarUpdate, LowHeightPreservationKeepsOnlyWhatIsBelowTheBase_Eq15_16)
+{
+    // Scan sees only [10,15): b_base = 10. [0,5) lies below it (unknown), [20,25) above.
+    const Pillar before = pillar(0.5, {iv(0, 5, 0.7), iv(20, 25, 0.7)});
+    Pillar with = before;
+    update(with, {{10, 15}}, /*lhp=*/true);
+    ASSERT_EQ(with.intervals.size(), 3u);
+    EXPECT_NEAR(probOf(with.intervals[0]), 0.7, kTol);           // kept
+    EXPECT_NEAR(probOf(with.intervals[2]), 0.28 / 0.445, kTol);  // decreased
+
+    Pillar without = before;
+    update(without, {{10, 15}}, /*lhp=*/false);
+    ASSERT_EQ(without.intervals.size(), 3u);
+    EXPECT_NEAR(probOf(without.intervals[0]), 0.28 / 0.445, kTol);
+    EXPECT_NEAR(probOf(without.intervals[2]), 0.28 / 0.445, kTol);
+
+    // An interval that straddles b_base is split there: the part below is kept.
+    Pillar straddle = pillar(0.5, {iv(0, 20, 0.7)});
+    update(straddle, {{15, 20}}, /*lhp=*/true);
+    ASSERT_EQ(straddle.intervals.size(), 2u);
+    EXPECT_EQ(straddle.intervals[0].hi, 15);
+    EXPECT_NEAR(probOf(straddle.intervals[0]), 0.7, kTol);
+    EXPECT_NEAR(probOf(straddle.intervals[1]), 0.42 / 0.555, kTol);
+}
+
+TEST(PillarUpdate, ClippingBoundsEveryProbability_Eq17_18)
+{
+    Pillar up = pillar(0.5, {});
+    Pillar down = pillar(0.5, {iv(10, 20, 0.5)});
+    for (int k = 0; k < 50; ++k)
+    {
+        update(up, {{0, 5}});
+        update(down, {{0, 5}});  // [10,20) above the base: never seen again
+    }
+    EXPECT_NEAR(probOf(up.intervals[0]), 0.9, kTol);
+    EXPECT_NEAR(logistic(up.logodds_empty), 0.1, kTol);  // p_empty clipped as well
+    EXPECT_NEAR(probOf(down.intervals[1]), 0.1, kTol);
+    // After saturation one opposite observation moves it off the bound by one step.
+    update(up, {{50, 55}});  // [0,5) is below the base: LHP keeps it
+    EXPECT_NEAR(probOf(up.intervals[0]), 0.9, kTol);
+    update(up, {{0, 1}});  // [1,5) now above the base and unseen
+    EXPECT_NEAR(probOf(up.intervals[1]), bayesFilter(0.9, 0.4, 0.55), kTol);
+}
+
+TEST(PillarUpdate, TouchingEqualResultsAreMergedLosslessly)
+{
+    // Two scans split [0,10) at different places; pieces with the same history re-merge.
+    Pillar g = pillar(0.5, {iv(0, 10, 0.5)});
+    update(g, {{0, 4}, {6, 10}});
+    // [0,4) and [6,10) seen; [4,6) not seen and above base 0.
+    ASSERT_EQ(g.intervals.size(), 3u);
+    update(g, {{0, 10}});
+    ASSERT_EQ(g.intervals.size(), 3u);  // [4,6) still differs
+    EXPECT_EQ(g.intervals[0].logodds, g.intervals[2].logodds);
+    update(g, {{0, 4}, {6, 10}});
+    update(g, {{4, 6}});  // base 4: [0,4) kept, [4,6) +hit, [6,10) -miss
+    for (std::size_t k = 1; k < g.intervals.size(); ++k)
+        EXPECT_FALSE(g.intervals[k - 1].hi == g.intervals[k].lo &&
+                     g.intervals[k - 1].logodds == g.intervals[k].logodds);
+}
+
+TEST(CapIntervals, MergesClosestPairWithWeightedLogOdds)
+{
+    std::vector<Interval> v = {{0, 2, 1.0f}, {3, 4, 0.0f}, {10, 12, 2.0f}};
+    capIntervals(v, 2);
+    ASSERT_EQ(v.size(), 2u);
+    EXPECT_EQ(v[0].lo, 0);
+    EXPECT_EQ(v[0].hi, 4);
+    EXPECT_NEAR(v[0].logodds, 2.0 / 3.0, 1e-6);  // (2 cells * 1 + 1 cell * 0) / 3
+    EXPECT_EQ(v[1].lo, 10);
+    capIntervals(v, 1);
+    ASSERT_EQ(v.size(), 1u);
+    EXPECT_EQ(v[0].lo, 0);
+    EXPECT_EQ(v[0].hi, 12);
+}
+
+TEST(PillarUpdate, IntervalCountStaysBoundedOverThousandsOfScans)
+{
+    // Random scans of one pillar: many small spans at random heights, as a tree or a
+    // facade seen from a moving sensor gives.
+    std::mt19937 rng(7);
+    std::uniform_int_distribution<int> height(0, 400), len(1, 6), count(1, 25);
+    for (const std::size_t cap : {std::size_t{8}, std::size_t{32}})
+    {
+        Pillar g = pillar(0.5, {});
+        std::vector<Interval> scratch;
+        const LogOddsModel m = model();
+        std::size_t peak = 0;
+        for (int scan = 0; scan < 5000; ++scan)
+        {
+            std::vector<int32_t> cells;
+            const int k = count(rng);
+            for (int i = 0; i < k; ++i)
+            {
+                const int h = height(rng), l = len(rng);
+                for (int c = h; c < h + l; ++c) cells.push_back(c);
+            }
+            std::sort(cells.begin(), cells.end());
+            std::vector<Span> spans;
+            buildSpans(cells.data(), cells.size(), 0, 0, spans);
+            updatePillar(g, spans.data(), spans.size(), m, cap, scratch);
+            peak = std::max(peak, g.intervals.size());
+            for (std::size_t q = 1; q < g.intervals.size(); ++q)
+                ASSERT_LE(g.intervals[q - 1].hi, g.intervals[q].lo) << "overlap at scan " << scan;
+        }
+        EXPECT_LE(peak, cap);
+        EXPECT_EQ(peak, cap) << "this workload should reach the bound";
+    }
+}
+
+TEST(PillarGrid, NewPillarTakesThePriorThenOneObservation)
+{
+    PillarGrid grid;
+    const std::vector<float> x = {-0.5f, -0.5f}, y = {-0.5f, -0.5f}, z = {0.0f, 1.0f};
+    const InsertStats st = grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+    EXPECT_EQ(st.points_used, 2u);
+    EXPECT_EQ(st.pillars_created, 1u);
+    ASSERT_EQ(grid.pillarCount(), 1u);
+    const Pillar* p = grid.findPillar({-1, -1});
+    ASSERT_NE(p, nullptr);
+    // Two heights 1 m apart: two intervals (gap 0.1 m, padding 0.05 m).
+    ASSERT_EQ(p->intervals.size(), 2u);
+    EXPECT_NEAR(grid.staticProbability(-0.5, -0.5, 0.0), 0.571428571, kTol);
+    EXPECT_NEAR(grid.staticProbability(-0.5, -0.5, 0.5), 0.421052632, kTol);  // p_empty
+    EXPECT_NEAR(grid.staticProbability(5.0, 5.0, 0.0), 0.5, kTol);            // unknown
+    EXPECT_TRUE(grid.isStatic(-0.5, -0.5, 1.0));
+    EXPECT_FALSE(grid.isStatic(-0.5, -0.5, 0.5));
+}
+
+TEST(PillarGrid, InsertionAppliesThePose)
+{
+    PillarGrid grid;
+    const std::vector<float> x = {1.2f}, y = {0.3f}, z = {0.0f};
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    T.translation() = Eigen::Vector3d(10.0, -20.0, 2.0);
+    grid.insertScan({x.data(), y.data(), z.data(), 1}, T);
+    // (1.2, 0.3, 0) rotated 90 deg about z is (-0.3, 1.2, 0); then + (10, -20, 2).
+    ASSERT_NE(grid.findPillar({9, -19}), nullptr);
+    EXPECT_TRUE(grid.isStatic(9.7, -18.8, 2.0));
+    std::vector<uint8_t> dyn;
+    const ClassifyStats cs = grid.classify({x.data(), y.data(), z.data(), 1}, dyn, T);
+    EXPECT_EQ(cs.static_points, 1u);
+    EXPECT_EQ(dyn, std::vector<uint8_t>{0});
+}
+
+TEST(PillarGrid, NonFinitePointsAreCountedNotUsed)
+{
+    PillarGrid grid;
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const std::vector<float> x = {0.5f, nan, 1e30f}, y = {0.5f, 0.5f, 0.5f}, z = {0, 0, 0};
+    const InsertStats st = grid.insertScan({x.data(), y.data(), z.data(), 3});
+    EXPECT_EQ(st.points_used, 1u);
+    EXPECT_EQ(st.points_invalid, 2u);
+    std::vector<uint8_t> dyn;
+    const ClassifyStats cs = grid.classify({x.data(), y.data(), z.data(), 3}, dyn);
+    EXPECT_EQ(cs.invalid_points, 1u);  // NaN; 1e30 is finite, lies in unknown space
+    EXPECT_EQ(dyn[1], 1);
+    EXPECT_EQ(dyn[0], 0);
+}
+
+TEST(PillarGrid, SetPillarRejectsBrokenInvariants)
+{
+    PillarGrid grid;
+    EXPECT_THROW(grid.setPillar({0, 0}, pillar(0.5, {iv(5, 5, 0.5)})), std::invalid_argument);
+    EXPECT_THROW(grid.setPillar({0, 0}, pillar(0.5, {iv(0, 5, 0.5), iv(4, 8, 0.5)})),
+                 std::invalid_argument);
+    EXPECT_NO_THROW(grid.setPillar({0, 0}, pillar(0.5, {iv(0, 5, 0.5), iv(5, 8, 0.6)})));
+    EXPECT_EQ(grid.intervalCount(), 2u);
+}

@@ -1,0 +1,211 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   test_reference.cpp
+ * @brief  PillarGrid against a slow, obviously-correct implementation of Section III on random
+ *         scans: std::map of pillars, std::set of endpoints, explicit overlap sets, Eq. 5 in
+ *         probability form, no merging.
+ */
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <random>
+#include <set>
+
+#include "hif/PillarGrid.h"
+
+using namespace hif;
+
+namespace
+{
+struct RefInterval
+{
+    double b, t, p;  // [b, t) in height cells, P(static)
+};
+
+struct RefPillar
+{
+    double p_empty;
+    std::vector<RefInterval> h;
+};
+
+class ReferenceHif
+{
+public:
+    explicit ReferenceHif(const Params& p) : prm_(p) {}
+
+    void insert(const std::vector<std::array<double, 3>>& pts)
+    {
+        // Eq. 1: pillar of every point; heights as cells.
+        std::map<std::pair<int, int>, std::set<int>> cells;
+        for (const auto& q : pts)
+        {
+            const int m = static_cast<int>(std::floor((q[0] - prm_.origin_x) / prm_.pillar_size));
+            const int n = static_cast<int>(std::floor((q[1] - prm_.origin_y) / prm_.pillar_size));
+            cells[{m, n}].insert(static_cast<int>(std::floor(q[2] / prm_.height_resolution)));
+        }
+        const int gap = static_cast<int>(std::lround(prm_.merge_gap / prm_.height_resolution));
+        const int pad = static_cast<int>(std::lround(prm_.interval_padding / prm_.height_resolution));
+        for (auto& [key, occ] : cells)
+        {
+            // Eq. 4: fill gaps of at most `gap` empty cells, pad, then take maximal runs.
+            std::set<int> filled;
+            int prev = *occ.begin();
+            for (int c : occ)
+            {
+                if (c - prev - 1 <= gap)
+                    for (int k = prev; k <= c; ++k) filled.insert(k);
+                filled.insert(c);
+                prev = c;
+            }
+            std::set<int> padded;
+            for (int c : filled)
+                for (int k = c - pad; k <= c + pad; ++k) padded.insert(k);
+            std::vector<RefInterval> scan;
+            for (int c : padded)
+            {
+                if (!scan.empty() && scan.back().t == c)
+                    scan.back().t = c + 1;
+                else
+                    scan.push_back({double(c), double(c + 1), 0.0});
+            }
+            auto it = pillars_.find(key);
+            if (it == pillars_.end())
+                it = pillars_.emplace(key, RefPillar{prm_.p_empty_init, {}}).first;
+            update(it->second, scan);
+        }
+    }
+
+    // P(static) at cell z of pillar (m, n): interval, else p_empty, else the prior.
+    double prob(int m, int n, int z) const
+    {
+        const auto it = pillars_.find({m, n});
+        if (it == pillars_.end()) return prm_.p_empty_init;
+        for (const auto& h : it->second.h)
+            if (h.b <= z && z < h.t) return h.p;
+        return it->second.p_empty;
+    }
+
+    const std::map<std::pair<int, int>, RefPillar>& pillars() const { return pillars_; }
+
+private:
+    double clip(double p) const { return std::max(prm_.p_min, std::min(prm_.p_max, p)); }
+
+    void update(RefPillar& g, const std::vector<RefInterval>& t) const
+    {
+        const double a = prm_.alpha, b = prm_.beta;
+        std::set<double> e;  // Eq. 9
+        for (const auto& h : t) e.insert({h.b, h.t});
+        for (const auto& h : g.h) e.insert({h.b, h.t});
+        double base = 1e300;  // Eq. 15
+        for (const auto& h : t) base = std::min(base, h.b);
+        const std::vector<double> es(e.begin(), e.end());
+        std::vector<RefInterval> out;
+        for (std::size_t k = 0; k + 1 < es.size(); ++k)  // Eq. 10
+        {
+            const double lo = es[k], hi = es[k + 1];
+            auto overlaps = [&](const RefInterval& h) { return std::max(h.b, lo) < std::min(h.t, hi); };
+            std::vector<const RefInterval*> om_t, om_g;  // Eq. 11
+            for (const auto& h : t)
+                if (overlaps(h)) om_t.push_back(&h);
+            for (const auto& h : g.h)
+                if (overlaps(h)) om_g.push_back(&h);
+            EXPECT_LE(om_g.size(), 1u);
+            double p;
+            if (om_t.empty() && om_g.empty())
+                continue;
+            else if (!om_t.empty() && !om_g.empty())
+                p = bayesFilter(om_g[0]->p, a, b);  // Eq. 12
+            else if (!om_g.empty())
+                p = (prm_.low_height_preservation && hi <= base)
+                        ? om_g[0]->p                                 // Eq. 16
+                        : bayesFilter(om_g[0]->p, 1 - a, 1 - b);     // Eq. 13
+            else
+                p = bayesFilter(g.p_empty, a, b);  // Eq. 14
+            out.push_back({lo, hi, clip(p)});     // Eq. 17-18
+        }
+        g.h = out;
+        g.p_empty = clip(bayesFilter(g.p_empty, 1 - a, 1 - b));  // Eq. 8
+    }
+
+    Params prm_;
+    std::map<std::pair<int, int>, RefPillar> pillars_;
+};
+
+std::vector<std::array<double, 3>> randomScan(std::mt19937& rng, int n, double shift)
+{
+    // A few pillars, heights clustered on a ground, a box and random clutter.
+    std::uniform_real_distribution<double> xy(-2.5 + shift, 2.5 + shift), u(0, 1);
+    std::normal_distribution<double> noise(0, 0.03);
+    std::vector<std::array<double, 3>> pts;
+    for (int i = 0; i < n; ++i)
+    {
+        const double x = xy(rng), y = xy(rng), r = u(rng);
+        double z;
+        if (r < 0.5)
+            z = noise(rng);  // ground
+        else if (r < 0.8)
+            z = 0.5 + 1.0 * u(rng) + (shift > 0.5 ? 0.7 : 0.0);  // box, moves up
+        else
+            z = 4.0 * u(rng);  // clutter
+        pts.push_back({x, y, z});
+    }
+    return pts;
+}
+
+void compareAll(const PillarGrid& grid, const ReferenceHif& ref, const Params& prm)
+{
+    ASSERT_EQ(grid.pillarCount(), ref.pillars().size());
+    for (const auto& [key, rp] : ref.pillars())
+    {
+        const Pillar* gp = grid.findPillar({int32_t(key.first), int32_t(key.second)});
+        ASSERT_NE(gp, nullptr);
+        EXPECT_NEAR(logistic(gp->logodds_empty), rp.p_empty, 1e-5);
+        for (int z = -40; z < 140; ++z)
+        {
+            const double x = prm.origin_x + (key.first + 0.5) * prm.pillar_size;
+            const double y = prm.origin_y + (key.second + 0.5) * prm.pillar_size;
+            const double zz = (z + 0.5) * prm.height_resolution;
+            ASSERT_NEAR(grid.staticProbability(x, y, zz), ref.prob(key.first, key.second, z),
+                        1e-5)
+                << "pillar (" << key.first << ", " << key.second << ") cell " << z;
+        }
+    }
+}
+}  // namespace
+
+class AgainstReference : public ::testing::TestWithParam<bool>
+{
+};
+
+TEST_P(AgainstReference, RandomScansGiveTheSameProbabilitiesEverywhere)
+{
+    Params prm;
+    prm.low_height_preservation = GetParam();
+    prm.origin_x = 0.25;
+    prm.origin_y = -0.4;
+    prm.max_intervals_per_pillar = 1000000;  // the reference does not cap
+    PillarGrid grid(prm);
+    ReferenceHif ref(prm);
+    std::mt19937 rng(GetParam() ? 11 : 12);
+    for (int scan = 0; scan < 30; ++scan)
+    {
+        const auto pts = randomScan(rng, 300, 0.1 * scan);
+        std::vector<float> x, y, z;
+        for (const auto& q : pts)
+        {
+            x.push_back(float(q[0]));
+            y.push_back(float(q[1]));
+            z.push_back(float(q[2]));
+            // The reference gets exactly what the grid sees (float inputs).
+        }
+        std::vector<std::array<double, 3>> as_float;
+        for (std::size_t i = 0; i < x.size(); ++i) as_float.push_back({x[i], y[i], z[i]});
+        grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+        ref.insert(as_float);
+        compareAll(grid, ref, prm);
+        if (HasFatalFailure()) return;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Lhp, AgainstReference, ::testing::Values(true, false));
