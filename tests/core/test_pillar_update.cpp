@@ -305,3 +305,21 @@ TEST(PillarGrid, SetPillarRejectsBrokenInvariants)
     EXPECT_NO_THROW(grid.setPillar({0, 0}, pillar(0.5, {iv(0, 5, 0.5), iv(5, 8, 0.6)})));
     EXPECT_EQ(grid.intervalCount(), 2u);
 }
+
+TEST(PillarGrid, SetParamsKeepsGeometryOnceFilled)
+{
+    PillarGrid grid;
+    Params p = grid.params();
+    p.pillar_size = 2.0;
+    EXPECT_NO_THROW(grid.setParams(p));  // empty: geometry may change
+    const std::vector<float> x = {0.5f}, y = {0.5f}, z = {0.0f};
+    grid.insertScan({x.data(), y.data(), z.data(), 1});
+    p.pillar_size = 1.0;
+    EXPECT_THROW(grid.setParams(p), std::invalid_argument);
+    p.pillar_size = 2.0;
+    p.static_threshold = 0.6;
+    grid.setParams(p);
+    EXPECT_FALSE(grid.isStatic(0.5, 0.5, 0.0));  // 0.571 < 0.6 now
+    p.alpha = 2.0;
+    EXPECT_THROW(grid.setParams(p), std::invalid_argument);
+}

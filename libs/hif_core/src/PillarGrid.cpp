@@ -18,6 +18,21 @@ PillarGrid::PillarGrid(const Params& params) : params_(params)
     model_ = LogOddsModel::fromParams(params_);
 }
 
+void PillarGrid::setParams(const Params& params)
+{
+    params.validate();
+    const bool same_geometry = params.pillar_size == params_.pillar_size &&
+                               params.origin_x == params_.origin_x &&
+                               params.origin_y == params_.origin_y &&
+                               params.height_resolution == params_.height_resolution;
+    if (!same_geometry && !empty())
+        throw std::invalid_argument(
+            "hif::PillarGrid::setParams: pillar_size, origin_x, origin_y and height_resolution "
+            "cannot change once the map holds pillars (clear it first)");
+    params_ = params;
+    model_ = LogOddsModel::fromParams(params_);
+}
+
 std::optional<PillarIndex> PillarGrid::pillarOf(double x, double y) const
 {
     const auto m = quantize(x, params_.origin_x, params_.pillar_size);

@@ -73,6 +73,10 @@ public:
                                Eigen::Isometry3d::Identity()) const;
 
     [[nodiscard]] const Params& params() const { return params_; }
+    /** Replaces the parameters; the pillars are kept. Throws std::invalid_argument if `params`
+     *  is invalid, or changes the grid geometry (pillar_size, origin_x, origin_y,
+     *  height_resolution) while the grid is not empty. */
+    void setParams(const Params& params);
     [[nodiscard]] bool empty() const { return pillars_.empty(); }
     [[nodiscard]] std::size_t pillarCount() const { return pillars_.size(); }
     [[nodiscard]] std::size_t intervalCount() const;
