@@ -6,6 +6,7 @@
 #include "hif/CHeightIntervalMap.h"
 
 #include <mrpt/config/CConfigFileBase.h>
+#include <mrpt/core/format.h>
 #include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/math/CMatrixFixed.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
@@ -194,16 +195,25 @@ void CHeightIntervalMap::TInsertionOptions::loadFromConfigFile(
 void CHeightIntervalMap::TInsertionOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
                                                              const std::string& s) const
 {
-    MRPT_SAVE_CONFIG_VAR_COMMENT(merge_gap, "Max gap between heights of one interval [m]");
-    MRPT_SAVE_CONFIG_VAR_COMMENT(interval_padding, "Widening of scan intervals [m]");
-    MRPT_SAVE_CONFIG_VAR_COMMENT(alpha, "P_S when observed (Eq. 6), in (0.5, 1)");
-    MRPT_SAVE_CONFIG_VAR_COMMENT(beta, "P_D when observed (Eq. 6), in (0, 0.5)");
-    MRPT_SAVE_CONFIG_VAR_COMMENT(p_min, "Lower clipping bound (Eq. 17)");
-    MRPT_SAVE_CONFIG_VAR_COMMENT(p_max, "Upper clipping bound (Eq. 17)");
-    MRPT_SAVE_CONFIG_VAR_COMMENT(p_empty_init, "p_empty of a new pillar");
-    MRPT_SAVE_CONFIG_VAR_COMMENT(low_height_preservation, "LHP (Eq. 15-16)");
-    MRPT_SAVE_CONFIG_VAR_COMMENT(static_threshold, "Static when P(static) >= this");
-    MRPT_SAVE_CONFIG_VAR_COMMENT(max_intervals_per_pillar, "Bound on intervals per pillar");
+    // Unpadded keys (MRPT 2.5.8's CConfigFileMemory keeps padding in the key, so a padded
+    // key cannot be read back from the same object) and doubles that read back exactly.
+    auto exact = [&](const char* name, double v, const char* comment)
+    {
+        std::string txt = mrpt::format("%.15g", v);
+        if (std::stod(txt) != v) txt = mrpt::format("%.17g", v);
+        c.write(s, name, txt, -1, -1, comment);
+    };
+    exact("merge_gap", merge_gap, "Max gap between heights of one interval [m]");
+    exact("interval_padding", interval_padding, "Widening of scan intervals [m]");
+    exact("alpha", alpha, "P_S when observed (Eq. 6), in (0.5, 1)");
+    exact("beta", beta, "P_D when observed (Eq. 6), in (0, 0.5)");
+    exact("p_min", p_min, "Lower clipping bound (Eq. 17)");
+    exact("p_max", p_max, "Upper clipping bound (Eq. 17)");
+    exact("p_empty_init", p_empty_init, "p_empty of a new pillar");
+    c.write(s, "low_height_preservation", low_height_preservation, -1, -1, "LHP (Eq. 15-16)");
+    exact("static_threshold", static_threshold, "Static when P(static) >= this");
+    c.write(s, "max_intervals_per_pillar", max_intervals_per_pillar, -1, -1,
+            "Bound on intervals per pillar");
 }
 
 void CHeightIntervalMap::TInsertionOptions::writeToStream(mrpt::serialization::CArchive& out) const

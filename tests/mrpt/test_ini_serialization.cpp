@@ -1,0 +1,223 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   test_ini_serialization.cpp
+ * @brief  Creation from .ini through CMultiMetricMap, options round trip, serialization round
+ *         trip through MRPT's class factory, and rejection of bad input.
+ */
+#include <gtest/gtest.h>
+#include <mrpt/config/CConfigFileMemory.h>
+#include <mrpt/io/CMemoryStream.h>
+#include <mrpt/maps/CMultiMetricMap.h>
+#include <mrpt/maps/CSimplePointsMap.h>
+#include <mrpt/obs/CObservationPointCloud.h>
+#include <mrpt/rtti/CObject.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <random>
+
+#include "hif/CHeightIntervalMap.h"
+
+using hif::CHeightIntervalMap;
+
+namespace
+{
+const char* kIni = R"(
+[map]
+CHeightIntervalMap_count=1
+
+[map_CHeightIntervalMap_00_creationOpts]
+pillar_size=0.75
+origin_x=-3.5
+origin_y=2.25
+height_resolution=0.04
+
+[map_CHeightIntervalMap_00_insertOpts]
+merge_gap=0.3
+interval_padding=0.08
+alpha=0.7
+beta=0.35
+p_min=0.12
+p_max=0.88
+p_empty_init=0.45
+low_height_preservation=false
+static_threshold=0.55
+max_intervals_per_pillar=17
+)";
+
+mrpt::maps::TSetOfMetricMapInitializers initializersFrom(const std::string& ini)
+{
+    mrpt::config::CConfigFileMemory cfg(ini);
+    mrpt::maps::TSetOfMetricMapInitializers inits;
+    inits.loadFromConfigFile(cfg, "map");
+    return inits;
+}
+
+void insertRandomScans(CHeightIntervalMap& map, int scans)
+{
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> xy(-6, 6), z(-0.5, 3);
+    for (int s = 0; s < scans; ++s)
+    {
+        auto obs = mrpt::obs::CObservationPointCloud::Create();
+        auto pts = mrpt::maps::CSimplePointsMap::Create();
+        for (int i = 0; i < 500; ++i) pts->insertPoint(xy(rng), xy(rng), z(rng));
+        obs->pointcloud = pts;
+        ASSERT_TRUE(map.insertObservation(*obs, mrpt::poses::CPose3D(0.3 * s, 0, 0, 0.1 * s, 0, 0)));
+    }
+}
+}  // namespace
+
+TEST(CHeightIntervalMapIni, CreatedThroughCMultiMetricMapWithEveryOption)
+{
+    mrpt::maps::CMultiMetricMap multi(initializersFrom(kIni));
+    ASSERT_EQ(multi.maps.size(), 1u);
+    ASSERT_TRUE(IS_CLASS(*multi.maps[0], CHeightIntervalMap));
+    const auto map = multi.mapByClass<CHeightIntervalMap>();
+    ASSERT_TRUE(map);
+    const hif::Params p = map->params();
+    EXPECT_DOUBLE_EQ(p.pillar_size, 0.75);
+    EXPECT_DOUBLE_EQ(p.origin_x, -3.5);
+    EXPECT_DOUBLE_EQ(p.origin_y, 2.25);
+    EXPECT_DOUBLE_EQ(p.height_resolution, 0.04);
+    EXPECT_DOUBLE_EQ(p.merge_gap, 0.3);
+    EXPECT_DOUBLE_EQ(p.interval_padding, 0.08);
+    EXPECT_DOUBLE_EQ(p.alpha, 0.7);
+    EXPECT_DOUBLE_EQ(p.beta, 0.35);
+    EXPECT_DOUBLE_EQ(p.p_min, 0.12);
+    EXPECT_DOUBLE_EQ(p.p_max, 0.88);
+    EXPECT_DOUBLE_EQ(p.p_empty_init, 0.45);
+    EXPECT_FALSE(p.low_height_preservation);
+    EXPECT_DOUBLE_EQ(p.static_threshold, 0.55);
+    EXPECT_EQ(p.max_intervals_per_pillar, 17u);
+
+    // The multi-map forwards observations to it.
+    auto obs = mrpt::obs::CObservationPointCloud::Create();
+    auto pts = mrpt::maps::CSimplePointsMap::Create();
+    pts->insertPoint(1.0f, 1.0f, 0.0f);
+    obs->pointcloud = pts;
+    EXPECT_TRUE(multi.insertObservation(*obs));
+    EXPECT_EQ(map->pillarCount(), 1u);
+}
+
+TEST(CHeightIntervalMapIni, OptionsSaveLoadRoundTrip)
+{
+    CHeightIntervalMap::TInsertionOptions a;
+    a.merge_gap = 0.1234567890123;  // more digits than "%f" keeps
+    a.interval_padding = 0.07;
+    a.alpha = 0.66;
+    a.beta = 0.41;
+    a.p_min = 0.15;
+    a.p_max = 0.85;
+    a.p_empty_init = 0.4;
+    a.low_height_preservation = false;
+    a.static_threshold = 0.62;
+    a.max_intervals_per_pillar = 9;
+    mrpt::config::CConfigFileMemory cfg;
+    a.saveToConfigFile(cfg, "opts");
+    CHeightIntervalMap::TInsertionOptions b;
+    b.loadFromConfigFile(cfg, "opts");
+    // Through text too, as when the .ini is written to disk and read again.
+    CHeightIntervalMap::TInsertionOptions b_text;
+    b_text.loadFromConfigFile(mrpt::config::CConfigFileMemory(cfg.getContent()), "opts");
+    EXPECT_EQ(b.merge_gap, a.merge_gap);
+    EXPECT_EQ(b.interval_padding, a.interval_padding);
+    EXPECT_EQ(b.alpha, a.alpha);
+    EXPECT_EQ(b.beta, a.beta);
+    EXPECT_EQ(b.p_min, a.p_min);
+    EXPECT_EQ(b.p_max, a.p_max);
+    EXPECT_EQ(b.p_empty_init, a.p_empty_init);
+    EXPECT_EQ(b.low_height_preservation, a.low_height_preservation);
+    EXPECT_EQ(b.static_threshold, a.static_threshold);
+    EXPECT_EQ(b.max_intervals_per_pillar, a.max_intervals_per_pillar);
+
+    // Every field of the map's parameters goes through the options: nothing is left at its
+    // default by a missing load or save line.
+    CHeightIntervalMap m1, m2, m3;
+    m1.insertionOptions = a;
+    m2.insertionOptions = b;
+    m3.insertionOptions = b_text;
+    EXPECT_EQ(m1.params(), m2.params());
+    EXPECT_EQ(m1.params(), m3.params());
+    EXPECT_NE(m1.params(), CHeightIntervalMap().params());
+}
+
+TEST(CHeightIntervalMapIni, BadValuesAreRejectedWithSectionAndField)
+{
+    std::string ini = kIni;
+    ini.replace(ini.find("alpha=0.7"), 9, "alpha=0.3");
+    try
+    {
+        initializersFrom(ini);
+        FAIL() << "alpha=0.3 accepted";
+    }
+    catch (const std::exception& e)
+    {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find("alpha"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("map_CHeightIntervalMap_00_insertOpts"), std::string::npos) << msg;
+    }
+    std::string ini2 = kIni;
+    ini2.replace(ini2.find("pillar_size=0.75"), 16, "pillar_size=-1.0");
+    try
+    {
+        initializersFrom(ini2);
+        FAIL() << "pillar_size=-1 accepted";
+    }
+    catch (const std::exception& e)
+    {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find("pillar_size"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("creationOpts"), std::string::npos) << msg;
+    }
+}
+
+TEST(CHeightIntervalMapSerialization, RoundTripThroughClassFactoryIsExact)
+{
+    CHeightIntervalMap map(0.5, 0.1, -0.2, 0.02);
+    map.insertionOptions.alpha = 0.65;
+    map.insertionOptions.low_height_preservation = false;
+    map.genericMapParams.enableSaveAs3DObject = false;
+    insertRandomScans(map, 25);
+    ASSERT_GT(map.intervalCount(), 100u);
+
+    mrpt::io::CMemoryStream buf;
+    auto out = mrpt::serialization::archiveFrom(buf);
+    out << map;
+    buf.Seek(0);
+    auto in = mrpt::serialization::archiveFrom(buf);
+    const mrpt::serialization::CSerializable::Ptr obj = in.ReadObject();
+    const auto copy = std::dynamic_pointer_cast<CHeightIntervalMap>(obj);
+    ASSERT_TRUE(copy) << "the class factory did not produce a hif::CHeightIntervalMap";
+    EXPECT_TRUE(copy->grid() == map.grid());
+    EXPECT_EQ(copy->params(), map.params());
+    EXPECT_FALSE(copy->genericMapParams.enableSaveAs3DObject);
+
+    // Serializing the copy gives the same bytes (deterministic order).
+    mrpt::io::CMemoryStream buf2;
+    auto out2 = mrpt::serialization::archiveFrom(buf2);
+    out2 << *copy;
+    ASSERT_EQ(buf2.getTotalBytesCount(), buf.getTotalBytesCount());
+    EXPECT_EQ(0, std::memcmp(buf.getRawBufferData(), buf2.getRawBufferData(),
+                             buf.getTotalBytesCount()));
+
+    // Mapping continues identically from the copy.
+    insertRandomScans(map, 3);
+    insertRandomScans(*copy, 3);
+    EXPECT_TRUE(copy->grid() == map.grid());
+}
+
+TEST(CHeightIntervalMapSerialization, TruncatedDataThrows)
+{
+    CHeightIntervalMap map;
+    insertRandomScans(map, 3);
+    mrpt::io::CMemoryStream buf;
+    auto out = mrpt::serialization::archiveFrom(buf);
+    out << map;
+    const auto n = static_cast<size_t>(buf.getTotalBytesCount());
+    mrpt::io::CMemoryStream cut;
+    cut.Write(buf.getRawBufferData(), n / 2);
+    cut.Seek(0);
+    auto in = mrpt::serialization::archiveFrom(cut);
+    CHeightIntervalMap loaded;
+    EXPECT_THROW(in >> loaded, std::exception);
+}

@@ -1,0 +1,206 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   test_map.cpp
+ * @brief  hif::CHeightIntervalMap as an MRPT map: construction, observation types, poses,
+ *         queries, copy, rendering and file output.
+ */
+#include <gtest/gtest.h>
+#include <mrpt/maps/CSimplePointsMap.h>
+#include <mrpt/obs/CObservation2DRangeScan.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CObservationGPS.h>
+#include <mrpt/obs/CObservationPointCloud.h>
+#include <mrpt/opengl/CSetOfObjects.h>
+#include <mrpt/opengl/CSetOfTriangles.h>
+#include <mrpt/system/filesystem.h>
+
+#include <fstream>
+#include <type_traits>
+
+#include "hif/CHeightIntervalMap.h"
+
+using hif::CHeightIntervalMap;
+using mrpt::math::TPoint3D;
+using mrpt::poses::CPose3D;
+
+static_assert(std::is_copy_constructible_v<CHeightIntervalMap>);
+static_assert(std::is_copy_assignable_v<CHeightIntervalMap>);
+static_assert(std::is_move_constructible_v<CHeightIntervalMap>);
+static_assert(std::is_move_assignable_v<CHeightIntervalMap>);
+
+namespace
+{
+mrpt::obs::CObservationPointCloud::Ptr cloud(const std::vector<TPoint3D>& pts,
+                                             const CPose3D& sensorPose = CPose3D())
+{
+    auto obs = mrpt::obs::CObservationPointCloud::Create();
+    auto map = mrpt::maps::CSimplePointsMap::Create();
+    for (const auto& p : pts) map->insertPoint(p);
+    obs->pointcloud = map;
+    obs->sensorPose = sensorPose;
+    return obs;
+}
+}  // namespace
+
+TEST(CHeightIntervalMap, EmptyOnConstruction)
+{
+    CHeightIntervalMap map;
+    EXPECT_TRUE(map.isEmpty());
+    EXPECT_EQ(map.pillarCount(), 0u);
+    EXPECT_NE(map.asString().find("0 pillars"), std::string::npos);
+}
+
+TEST(CHeightIntervalMap, Clear)
+{
+    CHeightIntervalMap map;
+    ASSERT_TRUE(map.insertObservation(*cloud({{0.5, 0.5, 0.0}})));
+    EXPECT_FALSE(map.isEmpty());
+    map.clear();
+    EXPECT_TRUE(map.isEmpty());
+}
+
+TEST(CHeightIntervalMap, InsertUnhandledObservationTypeReturnsFalse)
+{
+    CHeightIntervalMap map;
+    mrpt::obs::CObservationGPS gps;
+    EXPECT_FALSE(map.insertObservation(gps));
+    EXPECT_FALSE(map.canComputeObservationLikelihood(gps));
+    EXPECT_TRUE(map.isEmpty());
+}
+
+TEST(CHeightIntervalMap, InsertObservationPointCloudEmptyReturnsFalse)
+{
+    CHeightIntervalMap map;
+    EXPECT_FALSE(map.insertObservation(*cloud({})));
+    mrpt::obs::CObservationPointCloud no_cloud;  // pointcloud == nullptr
+    EXPECT_FALSE(map.insertObservation(no_cloud));
+    EXPECT_TRUE(map.isEmpty());
+}
+
+TEST(CHeightIntervalMap, PointCloudLandsAtRobotPoseComposedWithSensorPose)
+{
+    CHeightIntervalMap map;
+    const CPose3D robot(10.0, -20.0, 0.0, mrpt::DEG2RAD(90.0), 0.0, 0.0);
+    const CPose3D sensor(1.0, 0.0, 2.0, 0.0, 0.0, 0.0);
+    ASSERT_TRUE(map.insertObservation(*cloud({{3.2, 0.4, -2.0}}, sensor), robot));
+    // Sensor frame (3.2, 0.4, -2) -> robot frame (4.2, 0.4, 0) -> yaw 90: (-0.4, 4.2, 0)
+    // -> world (9.6, -15.8, 0).
+    const TPoint3D expected(9.6, -15.8, 0.0);
+    EXPECT_EQ(map.pillarCount(), 1u);
+    ASSERT_NE(map.grid().findPillar({9, -16}), nullptr);
+    EXPECT_TRUE(map.isStatic(expected));
+    EXPECT_NEAR(map.staticProbability(expected), 0.571428571, 1e-6);
+    // Where MRPT's CPointsMap would have put it (robot pose ignored): nothing.
+    EXPECT_NEAR(map.staticProbability({4.2, 0.4, 0.0}), 0.5, 1e-9);
+    EXPECT_EQ(map.grid().findPillar({4, 0}), nullptr);
+}
+
+TEST(CHeightIntervalMap, Inserts2DAnd3DRangeScansAtTheirPoses)
+{
+    CHeightIntervalMap map;
+    mrpt::obs::CObservation2DRangeScan scan;
+    scan.aperture = static_cast<float>(M_PI);
+    scan.rightToLeft = true;
+    scan.resizeScan(3);  // beams at -90, 0, +90 degrees
+    for (size_t i = 0; i < 3; ++i)
+    {
+        scan.setScanRange(i, 5.0f);
+        scan.setScanRangeValidity(i, i != 2);  // the +90 beam is invalid
+    }
+    scan.sensorPose = CPose3D(0, 0, 0.5, 0, 0, 0);
+    ASSERT_TRUE(map.insertObservation(scan, CPose3D(100, 0, 0, 0, 0, 0)));
+    EXPECT_EQ(map.lastInsertStats().points_used, 2u);
+    EXPECT_TRUE(map.isStatic({100.5, -4.5, 0.5}));  // -90 deg beam: (100, -5, 0.5)
+    EXPECT_TRUE(map.isStatic({105.0, 0.5, 0.5}));         // 0 deg beam
+    EXPECT_EQ(map.grid().findPillar({100, 5}), nullptr);  // invalid beam not inserted
+
+    mrpt::obs::CObservation3DRangeScan o3d;
+    o3d.hasPoints3D = true;
+    o3d.resizePoints3DVectors(1);
+    o3d.points3D_x[0] = 1.0f;
+    o3d.points3D_y[0] = 2.0f;
+    o3d.points3D_z[0] = 0.0f;
+    o3d.sensorPose = CPose3D(0, 0, 1.0, 0, 0, 0);
+    ASSERT_TRUE(map.insertObservation(o3d, CPose3D(-50, 0, 0, 0, 0, 0)));
+    EXPECT_TRUE(map.isStatic({-49.0, 2.0, 1.0}));
+}
+
+TEST(CHeightIntervalMap, ClassifyAndLikelihoodFollowTheIntervals)
+{
+    CHeightIntervalMap map;
+    // Scan 1: ground and a box at 1 m in pillar (0,0); scan 2 onward: ground only.
+    ASSERT_TRUE(map.insertObservation(*cloud({{0.5, 0.5, 0.0}, {0.5, 0.5, 1.0}})));
+    for (int k = 0; k < 5; ++k) ASSERT_TRUE(map.insertObservation(*cloud({{0.5, 0.5, 0.0}})));
+    mrpt::maps::CSimplePointsMap query;
+    query.insertPoint(0.5f, 0.5f, 0.0f);
+    query.insertPoint(0.5f, 0.5f, 1.0f);
+    std::vector<uint8_t> dyn;
+    const hif::ClassifyStats st = map.classify(query, dyn);
+    EXPECT_EQ(dyn, (std::vector<uint8_t>{0, 1}));
+    EXPECT_EQ(st.static_points, 1u);
+    EXPECT_EQ(st.dynamic_points, 1u);
+
+    // Likelihood: a cloud on the ground scores higher than one in the vacated box.
+    ASSERT_TRUE(map.canComputeObservationLikelihood(*cloud({{0.5, 0.5, 0.0}})));
+    const double on_ground = map.computeObservationLikelihood(*cloud({{0.5, 0.5, 0.0}}), CPose3D());
+    const double in_box = map.computeObservationLikelihood(*cloud({{0.5, 0.5, 1.0}}), CPose3D());
+    EXPECT_NEAR(on_ground, std::log(map.staticProbability({0.5, 0.5, 0.0})), 1e-6);
+    EXPECT_LT(in_box, on_ground);
+
+    // Matching ratio: half the points of `query` lie in a static interval.
+    EXPECT_FLOAT_EQ(map.compute3DMatchingRatio(&query, CPose3D(), {}), 0.5f);
+    // Shifted up by 1 m: the ground point moves into the box interval (dynamic).
+    EXPECT_FLOAT_EQ(map.compute3DMatchingRatio(&query, CPose3D(0, 0, 1.0, 0, 0, 0), {}), 0.0f);
+}
+
+TEST(CHeightIntervalMap, OptionChangesApplyAtTheNextQuery)
+{
+    CHeightIntervalMap map;
+    ASSERT_TRUE(map.insertObservation(*cloud({{0.5, 0.5, 0.0}})));
+    EXPECT_TRUE(map.isStatic({0.5, 0.5, 0.0}));  // 0.571
+    map.insertionOptions.static_threshold = 0.6;
+    EXPECT_FALSE(map.isStatic({0.5, 0.5, 0.0}));
+    map.insertionOptions.alpha = 0.4;  // invalid
+    EXPECT_THROW((void)map.isStatic({0.5, 0.5, 0.0}), std::invalid_argument);
+}
+
+TEST(CHeightIntervalMap, CopyIsDeepAndEqual)
+{
+    CHeightIntervalMap a;
+    ASSERT_TRUE(a.insertObservation(*cloud({{0.5, 0.5, 0.0}, {3.5, 0.5, 2.0}})));
+    CHeightIntervalMap b = a;
+    EXPECT_TRUE(b.grid() == a.grid());
+    ASSERT_TRUE(b.insertObservation(*cloud({{0.5, 0.5, 0.0}})));
+    EXPECT_FALSE(b.grid() == a.grid());
+    EXPECT_NEAR(a.staticProbability({0.5, 0.5, 0.0}), 0.571428571, 1e-6);
+}
+
+TEST(CHeightIntervalMap, VisualizationHasOneBoxPerInterval)
+{
+    CHeightIntervalMap map;
+    ASSERT_TRUE(map.insertObservation(*cloud({{0.5, 0.5, 0.0}, {0.5, 0.5, 2.0}, {7.5, 0.5, 0.0}})));
+    ASSERT_EQ(map.intervalCount(), 3u);
+    mrpt::opengl::CSetOfObjects objs;
+    map.getVisualizationInto(objs);
+    auto tris = objs.getByClass<mrpt::opengl::CSetOfTriangles>();
+    ASSERT_TRUE(tris);
+    EXPECT_EQ(tris->getTrianglesCount(), 3u * 12u);
+}
+
+TEST(CHeightIntervalMap, SavesTextAndSceneRepresentation)
+{
+    CHeightIntervalMap map;
+    ASSERT_TRUE(map.insertObservation(*cloud({{0.5, 0.5, 0.0}, {-1.5, 0.5, 2.0}})));
+    const std::string prefix = mrpt::system::getTempFileName();
+    map.saveMetricMapRepresentationToFile(prefix);
+    std::ifstream f(prefix + "_intervals.txt");
+    ASSERT_TRUE(f.good());
+    std::string header, line;
+    std::getline(f, header);
+    int lines = 0;
+    double x0, y0, x1, y1, zb, zt, p;
+    while (f >> x0 >> y0 >> x1 >> y1 >> zb >> zt >> p) ++lines;
+    EXPECT_EQ(lines, 2);
+    EXPECT_TRUE(mrpt::system::fileExists(prefix + "_3D.3Dscene"));
+    EXPECT_THROW(map.saveMetricMapRepresentationToFile("/nonexistent-dir/x"), std::exception);
+}
