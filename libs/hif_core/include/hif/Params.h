@@ -53,7 +53,7 @@ struct Params
 
     /** Upper bound on intervals per pillar. Touching intervals of equal probability are always
      *  merged (lossless); above this count, the closest neighbours are merged too (lossy). */
-    std::size_t max_intervals_per_pillar = 32;
+    std::size_t max_intervals_per_pillar = 16;
 
     /** Throws std::invalid_argument naming the first invalid field and its value. */
     void validate() const;

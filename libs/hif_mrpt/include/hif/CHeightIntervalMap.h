@@ -108,7 +108,7 @@ public:
         bool low_height_preservation = Params().low_height_preservation;
         /** Static when P(static) >= this (Default: 0.5) */
         double static_threshold = Params().static_threshold;
-        /** Bound on intervals per pillar (Default: 32) */
+        /** Bound on intervals per pillar (Default: 16) */
         uint64_t max_intervals_per_pillar = Params().max_intervals_per_pillar;
 
         /** Loads every field; throws if the result is invalid, naming the section and field. */
