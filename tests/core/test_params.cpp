@@ -64,7 +64,13 @@ TEST(Params, EachBadFieldIsNamed)
     expectRejected([](Params& p) { p.beta = 0.0; }, "beta");
     expectRejected([](Params& p) { p.p_min = 0.0; }, "p_min");
     expectRejected([](Params& p) { p.p_max = 1.0; }, "p_max");
-    expectRejected([](Params& p) { p.p_min = 0.6; p.p_max = 0.4; }, "p_min");
+    expectRejected(
+        [](Params& p)
+        {
+            p.p_min = 0.6;
+            p.p_max = 0.4;
+        },
+        "p_min");
     expectRejected([](Params& p) { p.p_empty_init = 0.95; }, "p_empty_init");
     expectRejected([](Params& p) { p.static_threshold = 1.0; }, "static_threshold");
     expectRejected([](Params& p) { p.max_intervals_per_pillar = 0; }, "max_intervals_per_pillar");

@@ -19,10 +19,7 @@ constexpr double kTol = 1e-6;
 
 double probOf(const Interval& iv) { return logistic(iv.logodds); }
 
-Interval iv(int32_t lo, int32_t hi, double p)
-{
-    return {lo, hi, static_cast<float>(logit(p))};
-}
+Interval iv(int32_t lo, int32_t hi, double p) { return {lo, hi, static_cast<float>(logit(p))}; }
 
 Pillar pillar(double p_empty, std::vector<Interval> ivs)
 {
@@ -130,9 +127,9 @@ TEST(PillarUpdate, PartialOverlapSplitsAtEveryEndpoint_Eq9_10)
     EXPECT_EQ(g.intervals[1].hi, 10);
     EXPECT_EQ(g.intervals[2].lo, 10);
     EXPECT_EQ(g.intervals[2].hi, 15);
-    EXPECT_NEAR(probOf(g.intervals[0]), 0.28 / 0.445, kTol);   // 0.4*0.7/(0.28+0.55*0.3)
-    EXPECT_NEAR(probOf(g.intervals[1]), 0.42 / 0.555, kTol);   // 0.6*0.7/(0.42+0.45*0.3)
-    EXPECT_NEAR(probOf(g.intervals[2]), 0.571428571, kTol);    // from p_empty 0.5
+    EXPECT_NEAR(probOf(g.intervals[0]), 0.28 / 0.445, kTol);  // 0.4*0.7/(0.28+0.55*0.3)
+    EXPECT_NEAR(probOf(g.intervals[1]), 0.42 / 0.555, kTol);  // 0.6*0.7/(0.42+0.45*0.3)
+    EXPECT_NEAR(probOf(g.intervals[2]), 0.571428571, kTol);   // from p_empty 0.5
 }
 
 TEST(PillarUpdate, LowHeightPreservationKeepsOnlyWhatIsBelowTheBase_Eq15_16)

@@ -45,7 +45,8 @@ public:
             cells[{m, n}].insert(static_cast<int>(std::floor(q[2] / prm_.height_resolution)));
         }
         const int gap = static_cast<int>(std::lround(prm_.merge_gap / prm_.height_resolution));
-        const int pad = static_cast<int>(std::lround(prm_.interval_padding / prm_.height_resolution));
+        const int pad =
+            static_cast<int>(std::lround(prm_.interval_padding / prm_.height_resolution));
         for (auto& [key, occ] : cells)
         {
             // Eq. 4: fill gaps of at most `gap` empty cells, pad, then take maximal runs.
@@ -104,7 +105,8 @@ private:
         for (std::size_t k = 0; k + 1 < es.size(); ++k)  // Eq. 10
         {
             const double lo = es[k], hi = es[k + 1];
-            auto overlaps = [&](const RefInterval& h) { return std::max(h.b, lo) < std::min(h.t, hi); };
+            auto overlaps = [&](const RefInterval& h)
+            { return std::max(h.b, lo) < std::min(h.t, hi); };
             std::vector<const RefInterval*> om_t, om_g;  // Eq. 11
             for (const auto& h : t)
                 if (overlaps(h)) om_t.push_back(&h);
@@ -118,11 +120,11 @@ private:
                 p = bayesFilter(om_g[0]->p, a, b);  // Eq. 12
             else if (!om_g.empty())
                 p = (prm_.low_height_preservation && hi <= base)
-                        ? om_g[0]->p                                 // Eq. 16
-                        : bayesFilter(om_g[0]->p, 1 - a, 1 - b);     // Eq. 13
+                        ? om_g[0]->p                              // Eq. 16
+                        : bayesFilter(om_g[0]->p, 1 - a, 1 - b);  // Eq. 13
             else
                 p = bayesFilter(g.p_empty, a, b);  // Eq. 14
-            out.push_back({lo, hi, clip(p)});     // Eq. 17-18
+            out.push_back({lo, hi, clip(p)});      // Eq. 17-18
         }
         g.h = out;
         g.p_empty = clip(bayesFilter(g.p_empty, 1 - a, 1 - b));  // Eq. 8
@@ -166,8 +168,7 @@ void compareAll(const PillarGrid& grid, const ReferenceHif& ref, const Params& p
             const double x = prm.origin_x + (key.first + 0.5) * prm.pillar_size;
             const double y = prm.origin_y + (key.second + 0.5) * prm.pillar_size;
             const double zz = (z + 0.5) * prm.height_resolution;
-            ASSERT_NEAR(grid.staticProbability(x, y, zz), ref.prob(key.first, key.second, z),
-                        1e-5)
+            ASSERT_NEAR(grid.staticProbability(x, y, zz), ref.prob(key.first, key.second, z), 1e-5)
                 << "pillar (" << key.first << ", " << key.second << ") cell " << z;
         }
     }

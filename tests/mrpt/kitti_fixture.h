@@ -34,16 +34,16 @@ inline bool dataRequired()
 }
 
 /** Skips the test (or fails it when HIF_REQUIRE_DATA=1) when the sequence is missing. */
-#define HIF_REQUIRE_KITTI_SEQUENCE(seq_dir)                                                     \
-    do                                                                                          \
-    {                                                                                           \
-        if (!mrpt::system::directoryExists(seq_dir))                                            \
-        {                                                                                       \
-            if (hif::test::dataRequired())                                                      \
-                FAIL() << "KITTI data missing at " << (seq_dir) << " and HIF_REQUIRE_DATA=1";   \
-            GTEST_SKIP() << "KITTI data not found at " << (seq_dir)                             \
-                         << " (set HIF_KITTI_DIR); skipping";                                   \
-        }                                                                                       \
+#define HIF_REQUIRE_KITTI_SEQUENCE(seq_dir)                                                   \
+    do                                                                                        \
+    {                                                                                         \
+        if (!mrpt::system::directoryExists(seq_dir))                                          \
+        {                                                                                     \
+            if (hif::test::dataRequired())                                                    \
+                FAIL() << "KITTI data missing at " << (seq_dir) << " and HIF_REQUIRE_DATA=1"; \
+            GTEST_SKIP() << "KITTI data not found at " << (seq_dir)                           \
+                         << " (set HIF_KITTI_DIR); skipping";                                 \
+        }                                                                                     \
     } while (0)
 
 inline Eigen::Matrix4d readRow34(std::istringstream& is)
@@ -77,8 +77,14 @@ struct KittiSequence
         }
     }
 
-    std::string scanFile(int i) const { return dir + "/velodyne/" + mrpt::format("%06d", i) + ".bin"; }
-    std::string labelFile(int i) const { return dir + "/labels/" + mrpt::format("%06d", i) + ".label"; }
+    std::string scanFile(int i) const
+    {
+        return dir + "/velodyne/" + mrpt::format("%06d", i) + ".bin";
+    }
+    std::string labelFile(int i) const
+    {
+        return dir + "/labels/" + mrpt::format("%06d", i) + ".label";
+    }
 
     std::vector<uint32_t> labels(int i) const
     {

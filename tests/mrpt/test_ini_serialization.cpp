@@ -62,7 +62,8 @@ void insertRandomScans(CHeightIntervalMap& map, int scans)
         auto pts = mrpt::maps::CSimplePointsMap::Create();
         for (int i = 0; i < 500; ++i) pts->insertPoint(xy(rng), xy(rng), z(rng));
         obs->pointcloud = pts;
-        ASSERT_TRUE(map.insertObservation(*obs, mrpt::poses::CPose3D(0.3 * s, 0, 0, 0.1 * s, 0, 0)));
+        ASSERT_TRUE(
+            map.insertObservation(*obs, mrpt::poses::CPose3D(0.3 * s, 0, 0, 0.1 * s, 0, 0)));
     }
 }
 }  // namespace
@@ -197,8 +198,8 @@ TEST(CHeightIntervalMapSerialization, RoundTripThroughClassFactoryIsExact)
     auto out2 = mrpt::serialization::archiveFrom(buf2);
     out2 << *copy;
     ASSERT_EQ(buf2.getTotalBytesCount(), buf.getTotalBytesCount());
-    EXPECT_EQ(0, std::memcmp(buf.getRawBufferData(), buf2.getRawBufferData(),
-                             buf.getTotalBytesCount()));
+    EXPECT_EQ(
+        0, std::memcmp(buf.getRawBufferData(), buf2.getRawBufferData(), buf.getTotalBytesCount()));
 
     // Mapping continues identically from the copy.
     insertRandomScans(map, 3);

@@ -110,7 +110,7 @@ TEST(CHeightIntervalMap, Inserts2DAnd3DRangeScansAtTheirPoses)
     scan.sensorPose = CPose3D(0, 0, 0.5, 0, 0, 0);
     ASSERT_TRUE(map.insertObservation(scan, CPose3D(100, 0, 0, 0, 0, 0)));
     EXPECT_EQ(map.lastInsertStats().points_used, 2u);
-    EXPECT_TRUE(map.isStatic({100.5, -4.5, 0.5}));  // -90 deg beam: (100, -5, 0.5)
+    EXPECT_TRUE(map.isStatic({100.5, -4.5, 0.5}));        // -90 deg beam: (100, -5, 0.5)
     EXPECT_TRUE(map.isStatic({105.0, 0.5, 0.5}));         // 0 deg beam
     EXPECT_EQ(map.grid().findPillar({100, 5}), nullptr);  // invalid beam not inserted
 

@@ -17,8 +17,7 @@ template <typename T>
 [[noreturn]] void fail(const char* field, T value, const char* requirement)
 {
     std::ostringstream os;
-    os << "hif::Params: invalid " << field << " = " << value << " (must be " << requirement
-       << ")";
+    os << "hif::Params: invalid " << field << " = " << value << " (must be " << requirement << ")";
     throw std::invalid_argument(os.str());
 }
 
@@ -55,11 +54,10 @@ void Params::validate() const
 
 bool operator==(const Params& a, const Params& b)
 {
-    return a.pillar_size == b.pillar_size && a.origin_x == b.origin_x &&
-           a.origin_y == b.origin_y && a.height_resolution == b.height_resolution &&
-           a.merge_gap == b.merge_gap && a.interval_padding == b.interval_padding &&
-           a.alpha == b.alpha && a.beta == b.beta && a.p_min == b.p_min && a.p_max == b.p_max &&
-           a.p_empty_init == b.p_empty_init &&
+    return a.pillar_size == b.pillar_size && a.origin_x == b.origin_x && a.origin_y == b.origin_y &&
+           a.height_resolution == b.height_resolution && a.merge_gap == b.merge_gap &&
+           a.interval_padding == b.interval_padding && a.alpha == b.alpha && a.beta == b.beta &&
+           a.p_min == b.p_min && a.p_max == b.p_max && a.p_empty_init == b.p_empty_init &&
            a.low_height_preservation == b.low_height_preservation &&
            a.static_threshold == b.static_threshold &&
            a.max_intervals_per_pillar == b.max_intervals_per_pillar;

@@ -57,8 +57,7 @@ InsertStats PillarGrid::insertScan(const PointsView& pts, const Eigen::Isometry3
     buf_points_.reserve(pts.size);
     for (std::size_t i = 0; i < pts.size; ++i)
     {
-        const Eigen::Vector3d p =
-            R * Eigen::Vector3d(pts.x[i], pts.y[i], pts.z[i]) + t;
+        const Eigen::Vector3d p = R * Eigen::Vector3d(pts.x[i], pts.y[i], pts.z[i]) + t;
         const auto idx = pillarOf(p.x(), p.y());
         const auto zc = heightCellOf(p.z());
         if (!idx || !zc)  // NaN/inf fail the range test in quantize()
@@ -71,12 +70,13 @@ InsertStats PillarGrid::insertScan(const PointsView& pts, const Eigen::Isometry3
     st.points_used = buf_points_.size();
 
     // 2) bucket by pillar, heights ascending within each pillar.
-    std::sort(buf_points_.begin(), buf_points_.end(), [](const KeyCell& a, const KeyCell& b)
+    std::sort(buf_points_.begin(), buf_points_.end(),
+              [](const KeyCell& a, const KeyCell& b)
               { return a.key < b.key || (a.key == b.key && a.z < b.z); });
 
     // 3) per pillar: spans of this scan (Eq. 4), then update or create the global pillar.
-    const auto gap_cells = static_cast<int32_t>(
-        std::floor(params_.merge_gap / params_.height_resolution + 1e-9));
+    const auto gap_cells =
+        static_cast<int32_t>(std::floor(params_.merge_gap / params_.height_resolution + 1e-9));
     const auto pad_cells = static_cast<int32_t>(
         std::ceil(params_.interval_padding / params_.height_resolution - 1e-9));
     for (std::size_t b = 0; b < buf_points_.size();)
@@ -169,8 +169,10 @@ std::vector<std::pair<PillarIndex, const Pillar*>> PillarGrid::sortedPillars() c
     std::vector<std::pair<PillarIndex, const Pillar*>> v;
     v.reserve(pillars_.size());
     for (const auto& kv : pillars_) v.emplace_back(unpackKey(kv.first), &kv.second);
-    std::sort(v.begin(), v.end(), [](const auto& a, const auto& b)
-              { return a.first.m < b.first.m || (a.first.m == b.first.m && a.first.n < b.first.n); });
+    std::sort(v.begin(), v.end(),
+              [](const auto& a, const auto& b) {
+                  return a.first.m < b.first.m || (a.first.m == b.first.m && a.first.n < b.first.n);
+              });
     return v;
 }
 

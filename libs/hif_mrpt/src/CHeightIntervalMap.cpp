@@ -46,8 +46,7 @@ bool sensorPoints(const mrpt::obs::CObservation& obs, PointsView& view,
                   mrpt::poses::CPose3D& sensorPose, std::vector<float> (&storage)[3])
 {
     using namespace mrpt::obs;
-    auto fromStorage = [&]()
-    {
+    auto fromStorage = [&]() {
         view = {storage[0].data(), storage[1].data(), storage[2].data(), storage[0].size()};
     };
     if (const auto* pc = dynamic_cast<const CObservationPointCloud*>(&obs))
@@ -405,8 +404,8 @@ void CHeightIntervalMap::getVisualizationInto(mrpt::opengl::CSetOfObjects& o) co
             static const int faces[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
                                             {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
             for (const auto& f : faces)
-                for (const auto& tri : {std::array<int, 3>{f[0], f[1], f[2]},
-                                        std::array<int, 3>{f[0], f[2], f[3]}})
+                for (const auto& tri :
+                     {std::array<int, 3>{f[0], f[1], f[2]}, std::array<int, 3>{f[0], f[2], f[3]}})
                 {
                     mrpt::opengl::TTriangle t3(c[tri[0]], c[tri[1]], c[tri[2]]);
                     t3.setColor(color);
@@ -457,8 +456,8 @@ float CHeightIntervalMap::compute3DMatchingRatio(const mrpt::maps::CMetricMap* o
     forEachWorldPoint(*pts,
                       [&](std::size_t, float lx, float ly, float lz)
                       {
-                          const auto w = otherMapPose.composePoint(
-                              mrpt::math::TPoint3D(lx, ly, lz));
+                          const auto w =
+                              otherMapPose.composePoint(mrpt::math::TPoint3D(lx, ly, lz));
                           const auto idx = g.pillarOf(w.x, w.y);
                           if (!idx) return;
                           const Pillar* pillar = g.findPillar(*idx);
@@ -508,7 +507,7 @@ void CHeightIntervalMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_
             in >> genericMapParams;
             PillarGrid g(p);  // validates the geometry
             grid_ = std::move(g);
-            syncParams();     // validates the options
+            syncParams();  // validates the options
             uint64_t n = 0;
             in >> n;
             for (uint64_t k = 0; k < n; ++k)
@@ -518,8 +517,8 @@ void CHeightIntervalMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_
                 uint32_t count = 0;
                 in >> idx.m >> idx.n >> pillar.logodds_empty >> count;
                 if (count > grid_.params().max_intervals_per_pillar)
-                    THROW_EXCEPTION_FMT("Corrupt hif map: pillar with %u intervals, above the bound",
-                                        count);
+                    THROW_EXCEPTION_FMT(
+                        "Corrupt hif map: pillar with %u intervals, above the bound", count);
                 pillar.intervals.resize(count);
                 for (Interval& iv : pillar.intervals) in >> iv.lo >> iv.hi >> iv.logodds;
                 grid_.setPillar(idx, std::move(pillar));

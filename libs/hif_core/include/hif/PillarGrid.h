@@ -31,10 +31,10 @@ struct PointsView
 /** What one insertScan() did. */
 struct InsertStats
 {
-    std::size_t points_used = 0;     ///< points that updated the map
-    std::size_t points_invalid = 0;  ///< non-finite, or outside the int32 index range: skipped
-    std::size_t pillars_updated = 0; ///< existing pillars matched by the scan
-    std::size_t pillars_created = 0; ///< pillars seen for the first time
+    std::size_t points_used = 0;      ///< points that updated the map
+    std::size_t points_invalid = 0;   ///< non-finite, or outside the int32 index range: skipped
+    std::size_t pillars_updated = 0;  ///< existing pillars matched by the scan
+    std::size_t pillars_created = 0;  ///< pillars seen for the first time
 };
 
 /** What one classify() found. */
@@ -56,8 +56,8 @@ public:
     /** Integrates one scan. `points` are in the sensor frame, `sensor_to_world` places them in
      *  the world frame (the frame of the grid). Every pillar that receives at least one point
      *  is updated (Eq. 8-18) or created; other pillars are untouched. */
-    InsertStats insertScan(const PointsView& points,
-                           const Eigen::Isometry3d& sensor_to_world = Eigen::Isometry3d::Identity());
+    InsertStats insertScan(const PointsView& points, const Eigen::Isometry3d& sensor_to_world =
+                                                         Eigen::Isometry3d::Identity());
 
     /** P(static) at a world point: that of the interval containing it; else the pillar's
      *  p_empty when the pillar exists; else Params::p_empty_init (nothing known). */
@@ -68,9 +68,9 @@ public:
 
     /** Classifies every point (sensor frame, placed by `sensor_to_world`): is_dynamic[i] = 1
      *  unless point i is static. `is_dynamic` is resized to points.size. */
-    ClassifyStats classify(const PointsView& points, std::vector<uint8_t>& is_dynamic,
-                           const Eigen::Isometry3d& sensor_to_world =
-                               Eigen::Isometry3d::Identity()) const;
+    ClassifyStats classify(
+        const PointsView& points, std::vector<uint8_t>& is_dynamic,
+        const Eigen::Isometry3d& sensor_to_world = Eigen::Isometry3d::Identity()) const;
 
     [[nodiscard]] const Params& params() const { return params_; }
     /** Replaces the parameters; the pillars are kept. Throws std::invalid_argument if `params`
