@@ -5,6 +5,7 @@
  *         trip through MRPT's class factory, and rejection of bad input.
  */
 #include <gtest/gtest.h>
+#include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/io/CMemoryStream.h>
 #include <mrpt/maps/CMultiMetricMap.h>
@@ -221,4 +222,15 @@ TEST(CHeightIntervalMapSerialization, TruncatedDataThrows)
     auto in = mrpt::serialization::archiveFrom(cut);
     CHeightIntervalMap loaded;
     EXPECT_THROW(in >> loaded, std::exception);
+}
+
+TEST(CHeightIntervalMapIni, ShippedKittiConfigLoadsTheDocumentedDefaults)
+{
+    mrpt::config::CConfigFile cfg(HIF_SHARE_DIR "/config/kitti.ini");
+    mrpt::maps::TSetOfMetricMapInitializers inits;
+    inits.loadFromConfigFile(cfg, "map");
+    mrpt::maps::CMultiMetricMap multi(inits);
+    const auto map = multi.mapByClass<CHeightIntervalMap>();
+    ASSERT_TRUE(map);
+    EXPECT_EQ(map->params(), hif::Params());
 }
