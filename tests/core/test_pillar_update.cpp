@@ -29,10 +29,10 @@ Pillar pillar(double p_empty, std::vector<Interval> ivs)
     return p;
 }
 
-// alpha 0.6, beta 0.45 (defaults); LHP as given.
+// The paper's model: alpha 0.6, beta 0.45 (defaults); LHP as given.
 LogOddsModel model(bool lhp = true)
 {
-    Params p;
+    Params p = Params::paper();
     p.low_height_preservation = lhp;
     return LogOddsModel::fromParams(p);
 }
@@ -319,4 +319,114 @@ TEST(PillarGrid, SetParamsKeepsGeometryOnceFilled)
     EXPECT_FALSE(grid.isStatic(0.5, 0.5, 0.0));  // 0.571 < 0.6 now
     p.alpha = 2.0;
     EXPECT_THROW(grid.setParams(p), std::invalid_argument);
+}
+
+// ---- Beyond the paper (Params::high_height_preservation, unseen_height_prior) ----
+
+LogOddsModel oursModel()
+{
+    return LogOddsModel::fromParams(Params());  // defaults: both rules on
+}
+
+TEST(HighHeightPreservation, IntervalsAboveTheCeilingKeepTheirProbability)
+{
+    // g: ground [0,5) and a wall top [40,50), both 0.7. The scan sees only [0,5) and could not
+    // see above cell 30: the wall top is unknown to it and keeps 0.7.
+    Pillar a = pillar(0.5, {iv(0, 5, 0.7), iv(40, 50, 0.7)});
+    Pillar b = a;
+    std::vector<Interval> scratch;
+    const std::vector<Span> t{{0, 5}};
+    updatePillar(a, t.data(), t.size(), oursModel(), 1000, scratch, /*ceiling=*/30);
+    ASSERT_EQ(a.intervals.size(), 2u);
+    EXPECT_NEAR(probOf(a.intervals[1]), 0.7, kTol);
+    // Without the rule (the paper), it is "expected but not seen": 0.28 / (0.28 + 0.165).
+    updatePillar(b, t.data(), t.size(), model(), 1000, scratch, /*ceiling=*/30);
+    EXPECT_NEAR(probOf(b.intervals[1]), 0.629213483, kTol);
+    // An interval that straddles the ceiling is partly visible: it gets the miss.
+    Pillar c = pillar(0.5, {iv(0, 5, 0.7), iv(25, 35, 0.7)});
+    updatePillar(c, t.data(), t.size(), oursModel(), 1000, scratch, /*ceiling=*/30);
+    EXPECT_NEAR(probOf(c.intervals[1]), 0.629213483, kTol);
+}
+
+TEST(UnseenHeightPrior, NewIntervalsAboveSeenTopStartFromPEmptyInit)
+{
+    Pillar g = pillar(0.3, {});
+    g.seen_top = 20;
+    std::vector<Interval> scratch;
+    const std::vector<Span> t{{10, 15}, {25, 30}};
+    updatePillar(g, t.data(), t.size(), oursModel(), 1000, scratch, /*ceiling=*/40);
+    ASSERT_EQ(g.intervals.size(), 2u);
+    // Below seen_top: prior p_empty = 0.3 (Eq. 14): 0.18 / 0.495.
+    EXPECT_NEAR(probOf(g.intervals[0]), 0.363636364, kTol);
+    // Above: never in view, prior p_empty_init = 0.5: 0.3 / 0.525.
+    EXPECT_NEAR(probOf(g.intervals[1]), 0.571428571, kTol);
+    // The scan could see up to cell 40: seen_top grows, and never shrinks.
+    EXPECT_EQ(g.seen_top, 40);
+    updatePillar(g, t.data(), t.size(), oursModel(), 1000, scratch, /*ceiling=*/35);
+    EXPECT_EQ(g.seen_top, 40);
+}
+
+TEST(ParamsPaper, TurnsOffEveryAddition)
+{
+    const Params p = Params::paper();
+    EXPECT_FALSE(p.high_height_preservation);
+    EXPECT_FALSE(p.unseen_height_prior);
+    EXPECT_EQ(p.beam_spacing_deg, 0.0);
+    Params q = p;
+    q.high_height_preservation = q.unseen_height_prior = true;
+    q.beam_spacing_deg = Params().beam_spacing_deg;
+    EXPECT_EQ(q, Params());  // and nothing else differs from the defaults
+}
+
+TEST(RangeAdaptiveIntervals, FarPillarsMergeHeightsOneBeamApart)
+{
+    // Sensor at the origin; a pillar 25.5 m away holds heights in cells 0 and 4 (three empty
+    // cells, 0.15 m, between them). One beam of 0.42 deg spans 25.5 * tan(0.42 deg) = 0.187 m
+    // there: merged into one interval with range-adaptive intervals; two intervals with the
+    // paper's fixed 0.1 m gap and 0.05 m padding ([-1, 2) and [3, 6)).
+    const std::vector<float> x{25.3f, 25.3f, 1.0f}, y{0.5f, 0.5f, 0.0f}, z{0.01f, 0.22f, 0.0f};
+    Params ours;
+    ours.high_height_preservation = false;
+    ours.unseen_height_prior = false;
+    Params paper = Params::paper();
+    for (const Params& prm : {ours, paper})
+    {
+        PillarGrid grid(prm);
+        grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+        const Pillar* p = grid.findPillar({25, 0});
+        ASSERT_NE(p, nullptr);
+        EXPECT_EQ(p->intervals.size(), prm.beam_spacing_deg > 0 ? 1u : 2u);
+        // A pillar 1 m away is unaffected: one interval either way.
+        EXPECT_EQ(grid.findPillar({1, 0})->intervals.size(), 1u);
+    }
+}
+
+TEST(HighHeightPreservation, GridMeasuresTheTopBeamFromTheScan)
+{
+    // Scan 1, from 30 m away: a wall 3 m high, seen whole. Then scans from 5 m away, whose top
+    // beam (measured from their own points) cannot see the wall above about 0.46 m.
+    Params prm;
+    PillarGrid grid(prm);
+    std::vector<float> x, y, z;
+    for (int k = 0; k <= 30; ++k)
+    {
+        x.push_back(30.5f);
+        y.push_back(0.5f);
+        z.push_back(0.1f * float(k));  // 0 .. 3 m
+    }
+    grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+    // Scan 2: sensor at x = 25.5, 5 m from the wall; sees the wall up to 0.5 m, and far away
+    // (x = 80) a point 5 m up: top slope 5 / 54.5, ceiling at the wall 5 * 5 / 54.5 = 0.46 m.
+    std::vector<float> x2{5.0f, 5.0f, 5.0f, 54.5f}, y2{0.0f, 0.0f, 0.0f, 0.0f},
+        z2{0.0f, 0.2f, 0.4f, 5.0f};
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation() = Eigen::Vector3d(25.5, 0.5, 0.0);
+    for (int s = 0; s < 5; ++s) grid.insertScan({x2.data(), y2.data(), z2.data(), x2.size()}, T);
+    EXPECT_TRUE(grid.isStatic(30.5, 0.5, 2.5)) << "the wall top, out of view, was kept";
+    Params paper = prm;
+    paper.high_height_preservation = false;
+    PillarGrid g2(paper);
+    g2.insertScan({x.data(), y.data(), z.data(), x.size()});
+    for (int s = 0; s < 5; ++s) g2.insertScan({x2.data(), y2.data(), z2.data(), x2.size()}, T);
+    EXPECT_FALSE(g2.isStatic(30.5, 0.5, 2.5)) << "without HHP the wall top is lost";
 }

@@ -41,6 +41,9 @@ p_min=0.12
 p_max=0.88
 p_empty_init=0.45
 low_height_preservation=false
+high_height_preservation=false
+unseen_height_prior=false
+beam_spacing_deg=0.3
 static_threshold=0.55
 max_intervals_per_pillar=17
 )";
@@ -89,6 +92,9 @@ TEST(CHeightIntervalMapIni, CreatedThroughCMultiMetricMapWithEveryOption)
     EXPECT_DOUBLE_EQ(p.p_max, 0.88);
     EXPECT_DOUBLE_EQ(p.p_empty_init, 0.45);
     EXPECT_FALSE(p.low_height_preservation);
+    EXPECT_FALSE(p.high_height_preservation);
+    EXPECT_FALSE(p.unseen_height_prior);
+    EXPECT_DOUBLE_EQ(p.beam_spacing_deg, 0.3);
     EXPECT_DOUBLE_EQ(p.static_threshold, 0.55);
     EXPECT_EQ(p.max_intervals_per_pillar, 17u);
 
@@ -112,6 +118,9 @@ TEST(CHeightIntervalMapIni, OptionsSaveLoadRoundTrip)
     a.p_max = 0.85;
     a.p_empty_init = 0.4;
     a.low_height_preservation = false;
+    a.high_height_preservation = false;
+    a.unseen_height_prior = false;
+    a.beam_spacing_deg = 0.123456789012345;
     a.static_threshold = 0.62;
     a.max_intervals_per_pillar = 9;
     mrpt::config::CConfigFileMemory cfg;
@@ -129,6 +138,9 @@ TEST(CHeightIntervalMapIni, OptionsSaveLoadRoundTrip)
     EXPECT_EQ(b.p_max, a.p_max);
     EXPECT_EQ(b.p_empty_init, a.p_empty_init);
     EXPECT_EQ(b.low_height_preservation, a.low_height_preservation);
+    EXPECT_EQ(b.high_height_preservation, a.high_height_preservation);
+    EXPECT_EQ(b.unseen_height_prior, a.unseen_height_prior);
+    EXPECT_EQ(b.beam_spacing_deg, a.beam_spacing_deg);
     EXPECT_EQ(b.static_threshold, a.static_threshold);
     EXPECT_EQ(b.max_intervals_per_pillar, a.max_intervals_per_pillar);
 
@@ -233,4 +245,15 @@ TEST(CHeightIntervalMapIni, ShippedKittiConfigLoadsTheDocumentedDefaults)
     const auto map = multi.mapByClass<CHeightIntervalMap>();
     ASSERT_TRUE(map);
     EXPECT_EQ(map->params(), hif::Params());
+}
+
+TEST(CHeightIntervalMapIni, ShippedPaperConfigLoadsThePaperSettings)
+{
+    mrpt::config::CConfigFile cfg(HIF_SHARE_DIR "/config/kitti-paper.ini");
+    mrpt::maps::TSetOfMetricMapInitializers inits;
+    inits.loadFromConfigFile(cfg, "map");
+    mrpt::maps::CMultiMetricMap multi(inits);
+    const auto map = multi.mapByClass<CHeightIntervalMap>();
+    ASSERT_TRUE(map);
+    EXPECT_EQ(map->params(), hif::Params::paper());
 }

@@ -46,10 +46,22 @@ void Params::validate() const
     if (!(p_min < p_max)) fail("p_min", p_min, "< p_max");
     if (!(p_empty_init >= p_min && p_empty_init <= p_max))
         fail("p_empty_init", p_empty_init, "in [p_min, p_max]");
+    requireFinite("beam_spacing_deg", beam_spacing_deg);
+    if (!(beam_spacing_deg >= 0.0 && beam_spacing_deg < 10.0))
+        fail("beam_spacing_deg", beam_spacing_deg, "in [0, 10)");
     if (!(static_threshold > 0.0 && static_threshold < 1.0))
         fail("static_threshold", static_threshold, "in (0, 1)");
     if (max_intervals_per_pillar < 1)
         fail("max_intervals_per_pillar", max_intervals_per_pillar, ">= 1");
+}
+
+Params Params::paper()
+{
+    Params p;
+    p.high_height_preservation = false;
+    p.unseen_height_prior = false;
+    p.beam_spacing_deg = 0.0;
+    return p;
 }
 
 bool operator==(const Params& a, const Params& b)
@@ -59,7 +71,9 @@ bool operator==(const Params& a, const Params& b)
            a.interval_padding == b.interval_padding && a.alpha == b.alpha && a.beta == b.beta &&
            a.p_min == b.p_min && a.p_max == b.p_max && a.p_empty_init == b.p_empty_init &&
            a.low_height_preservation == b.low_height_preservation &&
-           a.static_threshold == b.static_threshold &&
+           a.high_height_preservation == b.high_height_preservation &&
+           a.unseen_height_prior == b.unseen_height_prior &&
+           a.beam_spacing_deg == b.beam_spacing_deg && a.static_threshold == b.static_threshold &&
            a.max_intervals_per_pillar == b.max_intervals_per_pillar;
 }
 

@@ -19,6 +19,8 @@ LogOddsModel LogOddsModel::fromParams(const Params& p)
     m.lmax = static_cast<float>(logit(p.p_max));
     m.empty_init = static_cast<float>(logit(p.p_empty_init));
     m.lhp = p.low_height_preservation;
+    m.hhp = p.high_height_preservation;
+    m.unseen_prior = p.unseen_height_prior;
     return m;
 }
 
@@ -56,9 +58,10 @@ void buildSpans(const int32_t* cells, std::size_t n, int32_t gap_cells, int32_t 
 }
 
 void updatePillar(Pillar& g, const Span* t, std::size_t nt, const LogOddsModel& model,
-                  std::size_t max_intervals, std::vector<Interval>& out)
+                  std::size_t max_intervals, std::vector<Interval>& out, int32_t ceiling)
 {
     const float empty_prior = g.logodds_empty;
+    const int32_t seen_top = g.seen_top;
     const std::vector<Interval>& gi = g.intervals;
     const std::size_t ng = gi.size();
     // LHP (Eq. 15): b_base is the lowest height the scan saw in this pillar.
@@ -99,17 +102,25 @@ void updatePillar(Pillar& g, const Span* t, std::size_t nt, const LogOddsModel& 
         {
             if (model.lhp && hi <= base)
                 emit(lo, hi, gi[i].logodds);  // Eq. 16: below b_base, unknown: keep
+            else if (model.hhp && lo >= ceiling)
+                emit(lo, hi, gi[i].logodds);  // HHP: above the field of view, unknown: keep
             else
                 emit(lo, hi, gi[i].logodds + model.miss);  // Eq. 13: expected, not seen
         }
         else if (in_t)
-            emit(lo, hi, empty_prior + model.hit);  // Eq. 14: new, prior p_empty
+        {
+            // Eq. 14: new, prior p_empty; unseen-height prior: p_empty_init where no scan
+            // could look before.
+            const bool unseen = model.unseen_prior && lo >= seen_top;
+            emit(lo, hi, (unseen ? model.empty_init : empty_prior) + model.hit);
+        }
         // neither: not covered by any observation, discarded.
         x = next;
     }
     if (out.size() > max_intervals) capIntervals(out, max_intervals);
     g.intervals.swap(out);
     g.logodds_empty = model.clamp(empty_prior + model.miss);  // Eq. 8
+    g.seen_top = std::max(seen_top, ceiling);
 }
 
 void capIntervals(std::vector<Interval>& iv, std::size_t max_intervals)

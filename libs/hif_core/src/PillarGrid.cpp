@@ -7,11 +7,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
 namespace hif
 {
+namespace
+{
+// Points closer than this (horizontally) to the sensor are ignored when measuring the top
+// beam's elevation: there, range noise makes z / range unreliable.
+constexpr double kMinRangeForElevation = 2.0;
+}  // namespace
+
 PillarGrid::PillarGrid(const Params& params) : params_(params)
 {
     params_.validate();
@@ -52,12 +60,15 @@ InsertStats PillarGrid::insertScan(const PointsView& pts, const Eigen::Isometry3
     const Eigen::Matrix3d R = T.linear();
     const Eigen::Vector3d t = T.translation();
 
-    // 1) transform, quantize (Eq. 1) and key every point.
+    // 1) transform, quantize (Eq. 1) and key every point; note the top beam's elevation
+    //    (largest z / horizontal range in the sensor frame) for High-Height Preservation.
     buf_points_.clear();
     buf_points_.reserve(pts.size);
+    double top_slope = -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < pts.size; ++i)
     {
-        const Eigen::Vector3d p = R * Eigen::Vector3d(pts.x[i], pts.y[i], pts.z[i]) + t;
+        const Eigen::Vector3d ps(pts.x[i], pts.y[i], pts.z[i]);
+        const Eigen::Vector3d p = R * ps + t;
         const auto idx = pillarOf(p.x(), p.y());
         const auto zc = heightCellOf(p.z());
         if (!idx || !zc)  // NaN/inf fail the range test in quantize()
@@ -65,6 +76,9 @@ InsertStats PillarGrid::insertScan(const PointsView& pts, const Eigen::Isometry3
             ++st.points_invalid;
             continue;
         }
+        const double r2 = ps.x() * ps.x() + ps.y() * ps.y();
+        if (r2 > kMinRangeForElevation * kMinRangeForElevation)
+            top_slope = std::max(top_slope, ps.z() / std::sqrt(r2));
         buf_points_.push_back({packKey(*idx), *zc});
     }
     st.points_used = buf_points_.size();
@@ -75,10 +89,10 @@ InsertStats PillarGrid::insertScan(const PointsView& pts, const Eigen::Isometry3
               { return a.key < b.key || (a.key == b.key && a.z < b.z); });
 
     // 3) per pillar: spans of this scan (Eq. 4), then update or create the global pillar.
-    const auto gap_cells =
-        static_cast<int32_t>(std::floor(params_.merge_gap / params_.height_resolution + 1e-9));
-    const auto pad_cells = static_cast<int32_t>(
-        std::ceil(params_.interval_padding / params_.height_resolution - 1e-9));
+    const double res = params_.height_resolution;
+    const double beam_slope = std::tan(params_.beam_spacing_deg * M_PI / 180.0);
+    const bool need_ceiling = (params_.high_height_preservation || params_.unseen_height_prior) &&
+                              std::isfinite(top_slope);
     for (std::size_t b = 0; b < buf_points_.size();)
     {
         const uint64_t key = buf_points_[b].key;
@@ -87,7 +101,27 @@ InsertStats PillarGrid::insertScan(const PointsView& pts, const Eigen::Isometry3
         for (; e < buf_points_.size() && buf_points_[e].key == key; ++e)
             buf_cells_.push_back(buf_points_[e].z);
         b = e;
+
+        // Horizontal distance from the sensor to the pillar's centre.
+        const PillarIndex idx = unpackKey(key);
+        const double cx = params_.origin_x + (idx.m + 0.5) * params_.pillar_size;
+        const double cy = params_.origin_y + (idx.n + 0.5) * params_.pillar_size;
+        const double d = std::hypot(cx - t.x(), cy - t.y());
+        const double beam_gap = d * beam_slope;  // vertical distance between beams at d
+        const auto gap_cells =
+            static_cast<int32_t>(std::floor(std::max(params_.merge_gap, beam_gap) / res + 1e-9));
+        const auto pad_cells = static_cast<int32_t>(
+            std::ceil(std::max(params_.interval_padding, 0.5 * beam_gap) / res - 1e-9));
         buildSpans(buf_cells_.data(), buf_cells_.size(), gap_cells, pad_cells, buf_spans_);
+
+        int32_t ceiling = kAllHeights;
+        if (need_ceiling)
+        {
+            const double top = (t.z() + d * top_slope) / res;
+            if (top < static_cast<double>(kAllHeights))
+                ceiling = static_cast<int32_t>(
+                    std::max<double>(std::ceil(top), std::numeric_limits<int32_t>::min() + 1.0));
+        }
 
         auto [it, inserted] = pillars_.try_emplace(key);
         if (inserted)
@@ -100,7 +134,7 @@ InsertStats PillarGrid::insertScan(const PointsView& pts, const Eigen::Isometry3
         else
             ++st.pillars_updated;
         updatePillar(it->second, buf_spans_.data(), buf_spans_.size(), model_,
-                     params_.max_intervals_per_pillar, buf_intervals_);
+                     params_.max_intervals_per_pillar, buf_intervals_, ceiling);
     }
     return st;
 }

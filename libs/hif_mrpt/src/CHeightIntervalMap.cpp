@@ -148,6 +148,9 @@ Params CHeightIntervalMap::params() const
     p.p_max = o.p_max;
     p.p_empty_init = o.p_empty_init;
     p.low_height_preservation = o.low_height_preservation;
+    p.high_height_preservation = o.high_height_preservation;
+    p.unseen_height_prior = o.unseen_height_prior;
+    p.beam_spacing_deg = o.beam_spacing_deg;
     p.static_threshold = o.static_threshold;
     p.max_intervals_per_pillar = static_cast<std::size_t>(o.max_intervals_per_pillar);
     return p;
@@ -176,6 +179,9 @@ void CHeightIntervalMap::TInsertionOptions::loadFromConfigFile(
     MRPT_LOAD_CONFIG_VAR_CS(p_max, double);
     MRPT_LOAD_CONFIG_VAR_CS(p_empty_init, double);
     MRPT_LOAD_CONFIG_VAR_CS(low_height_preservation, bool);
+    MRPT_LOAD_CONFIG_VAR_CS(high_height_preservation, bool);
+    MRPT_LOAD_CONFIG_VAR_CS(unseen_height_prior, bool);
+    MRPT_LOAD_CONFIG_VAR_CS(beam_spacing_deg, double);
     MRPT_LOAD_CONFIG_VAR_CS(static_threshold, double);
     MRPT_LOAD_CONFIG_VAR_CS(max_intervals_per_pillar, uint64_t);
     // Validate now, so that a bad value is reported with the section it came from.
@@ -210,6 +216,12 @@ void CHeightIntervalMap::TInsertionOptions::saveToConfigFile(mrpt::config::CConf
     exact("p_max", p_max, "Upper clipping bound (Eq. 17)");
     exact("p_empty_init", p_empty_init, "p_empty of a new pillar");
     c.write(s, "low_height_preservation", low_height_preservation, -1, -1, "LHP (Eq. 15-16)");
+    c.write(s, "high_height_preservation", high_height_preservation, -1, -1,
+            "Keep intervals above the field of view (not in the paper)");
+    c.write(s, "unseen_height_prior", unseen_height_prior, -1, -1,
+            "New intervals above every seen height start at p_empty_init (not in the paper)");
+    exact("beam_spacing_deg", beam_spacing_deg,
+          "Range-adaptive intervals: vertical beam spacing [deg], 0 = off (not in the paper)");
     exact("static_threshold", static_threshold, "Static when P(static) >= this");
     c.write(s, "max_intervals_per_pillar", max_intervals_per_pillar, -1, -1,
             "Bound on intervals per pillar");
@@ -218,13 +230,15 @@ void CHeightIntervalMap::TInsertionOptions::saveToConfigFile(mrpt::config::CConf
 void CHeightIntervalMap::TInsertionOptions::writeToStream(mrpt::serialization::CArchive& out) const
 {
     out << merge_gap << interval_padding << alpha << beta << p_min << p_max << p_empty_init
-        << low_height_preservation << static_threshold << max_intervals_per_pillar;
+        << low_height_preservation << high_height_preservation << unseen_height_prior
+        << beam_spacing_deg << static_threshold << max_intervals_per_pillar;
 }
 
 void CHeightIntervalMap::TInsertionOptions::readFromStream(mrpt::serialization::CArchive& in)
 {
     in >> merge_gap >> interval_padding >> alpha >> beta >> p_min >> p_max >> p_empty_init >>
-        low_height_preservation >> static_threshold >> max_intervals_per_pillar;
+        low_height_preservation >> high_height_preservation >> unseen_height_prior >>
+        beam_spacing_deg >> static_threshold >> max_intervals_per_pillar;
 }
 
 CHeightIntervalMap::TMapDefinition::TMapDefinition() = default;
@@ -489,7 +503,7 @@ void CHeightIntervalMap::serializeTo(mrpt::serialization::CArchive& out) const
     out << static_cast<uint64_t>(pillars.size());
     for (const auto& [idx, pillar] : pillars)
     {
-        out << idx.m << idx.n << pillar->logodds_empty
+        out << idx.m << idx.n << pillar->logodds_empty << pillar->seen_top
             << static_cast<uint32_t>(pillar->intervals.size());
         for (const Interval& iv : pillar->intervals) out << iv.lo << iv.hi << iv.logodds;
     }
@@ -515,7 +529,7 @@ void CHeightIntervalMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_
                 PillarIndex idx;
                 Pillar pillar;
                 uint32_t count = 0;
-                in >> idx.m >> idx.n >> pillar.logodds_empty >> count;
+                in >> idx.m >> idx.n >> pillar.logodds_empty >> pillar.seen_top >> count;
                 if (count > grid_.params().max_intervals_per_pillar)
                     THROW_EXCEPTION_FMT(
                         "Corrupt hif map: pillar with %u intervals, above the bound", count);

@@ -48,12 +48,35 @@ struct Params
      *  probability when it lies entirely below the lowest height the scan saw in the pillar. */
     bool low_height_preservation = true;
 
+    /** High-Height Preservation (ours, not in the paper; false = the paper): an interval
+     *  unobserved by a scan also keeps its probability when it lies entirely above the highest
+     *  height the scan could see in the pillar: sensor height + distance * tan(top beam
+     *  elevation), the top beam's elevation being measured from the scan itself. Without it,
+     *  the tops of walls and trees leave the field of view as the sensor approaches and are
+     *  wrongly "expected but not seen" (Eq. 13). */
+    bool high_height_preservation = true;
+
+    /** Unseen-height prior (ours; false = the paper): a new interval (Eq. 14) above every height
+     *  any earlier scan could see in the pillar starts from p_empty_init instead of the pillar's
+     *  p_empty, since p_empty (Eq. 8) only speaks for the heights that were in view. */
+    bool unseen_height_prior = true;
+
+    /** Range-adaptive intervals (ours; 0 = the paper's fixed merge_gap and interval_padding):
+     *  the vertical angle between neighbouring beams, degrees (HDL-64E: about 0.42). In a pillar
+     *  at horizontal distance d from the sensor, heights closer than d * tan(angle) are merged,
+     *  and intervals are padded by half of it, so that a surface sampled by consecutive beams
+     *  stays one interval at any range. */
+    double beam_spacing_deg = 0.42;
+
     /** A point is static when the interval it falls in has P(static) >= this. */
     double static_threshold = 0.5;
 
     /** Upper bound on intervals per pillar. Touching intervals of equal probability are always
      *  merged (lossless); above this count, the closest neighbours are merged too (lossy). */
     std::size_t max_intervals_per_pillar = 16;
+
+    /** The paper's method as written: the three options above off. */
+    [[nodiscard]] static Params paper();
 
     /** Throws std::invalid_argument naming the first invalid field and its value. */
     void validate() const;

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "hif/Params.h"
@@ -37,16 +38,22 @@ struct Interval
     }
 };
 
-/** Global pillar P_mn = (p_empty, H_mn) (Eq. 4).
+/** "No height limit": a scan whose field of view covers every height of the pillar. */
+constexpr int32_t kAllHeights = std::numeric_limits<int32_t>::max();
+
+/** Global pillar P_mn = (p_empty, H_mn) (Eq. 4), plus the highest height cell that any scan
+ *  could see in it so far (`seen_top`, exclusive; used by the unseen-height prior).
  *  Invariant: intervals are sorted by lo, non-empty (lo < hi) and non-overlapping
  *  (intervals[k].hi <= intervals[k+1].lo); two touching intervals never have equal log-odds. */
 struct Pillar
 {
     float logodds_empty = 0.0f;
+    int32_t seen_top = std::numeric_limits<int32_t>::min();
     std::vector<Interval> intervals;
     friend bool operator==(const Pillar& a, const Pillar& b)
     {
-        return a.logodds_empty == b.logodds_empty && a.intervals == b.intervals;
+        return a.logodds_empty == b.logodds_empty && a.seen_top == b.seen_top &&
+               a.intervals == b.intervals;
     }
 };
 
@@ -70,6 +77,8 @@ struct LogOddsModel
     float lmax = 0.0f;
     float empty_init = 0.0f;
     bool lhp = true;
+    bool hhp = true;
+    bool unseen_prior = true;
 
     [[nodiscard]] static LogOddsModel fromParams(const Params& p);
     [[nodiscard]] float clamp(float l) const { return l < lmin ? lmin : (l > lmax ? lmax : l); }
@@ -85,9 +94,13 @@ void buildSpans(const int32_t* sorted_cells, std::size_t n, int32_t gap_cells, i
  *  scan: elementary intervals from the union of endpoints (Eq. 9-10), the three overlap cases
  *  (Eq. 11-14), LHP (Eq. 15-16), clipping (Eq. 17-18), then p_empty (Eq. 8). Touching
  *  results of equal log-odds are merged (lossless); then the count is capped at `max_intervals`
- *  (see capIntervals). `scratch` is reused storage. */
+ *  (see capIntervals). `scratch` is reused storage. `ceiling` is the first height cell above
+ *  what the scan could see in this pillar (kAllHeights: no limit); with model.hhp, intervals
+ *  at or above it are kept as they are, and with model.unseen_prior, new intervals at or above
+ *  the pillar's previous seen_top start from model.empty_init. */
 void updatePillar(Pillar& g, const Span* t, std::size_t nt, const LogOddsModel& model,
-                  std::size_t max_intervals, std::vector<Interval>& scratch);
+                  std::size_t max_intervals, std::vector<Interval>& scratch,
+                  int32_t ceiling = kAllHeights);
 
 /** Merges neighbours until at most `max_intervals` remain: each step joins the pair with the
  *  smallest gap between them (ties: the smallest log-odds difference) into one interval that

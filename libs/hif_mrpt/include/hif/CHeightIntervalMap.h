@@ -106,6 +106,14 @@ public:
         double p_empty_init = Params().p_empty_init;
         /** Low-Height Preservation, Eq. 15-16 (Default: true) */
         bool low_height_preservation = Params().low_height_preservation;
+        /** Keep intervals above the scan's field of view (ours; Default: true) */
+        bool high_height_preservation = Params().high_height_preservation;
+        /** New intervals above every height seen so far start at p_empty_init (ours;
+         *  Default: true) */
+        bool unseen_height_prior = Params().unseen_height_prior;
+        /** Range-adaptive intervals: vertical beam spacing, degrees; 0 = the paper's fixed
+         *  merge_gap/interval_padding (ours; Default: 0.42, the HDL-64E) */
+        double beam_spacing_deg = Params().beam_spacing_deg;
         /** Static when P(static) >= this (Default: 0.5) */
         double static_threshold = Params().static_threshold;
         /** Bound on intervals per pillar (Default: 16) */
