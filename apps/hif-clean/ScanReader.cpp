@@ -165,9 +165,10 @@ bool ScanReader::next(Scan& out)
                 }
                 catch (const std::exception& e)
                 {
-                    throw std::runtime_error("rawlog '" + path_ + "' is corrupt or truncated after " +
-                                             std::to_string(scans_read_) + " scans: " +
-                                             std::string(e.what()).substr(0, 300));
+                    throw std::runtime_error("rawlog '" + path_ +
+                                             "' is corrupt or truncated after " +
+                                             std::to_string(scans_read_) +
+                                             " scans: " + std::string(e.what()).substr(0, 300));
                 }
                 if (auto rp = std::dynamic_pointer_cast<CObservationRobotPose>(obj))
                 {
@@ -180,11 +181,12 @@ bool ScanReader::next(Scan& out)
                     pending_pose_ = pose_;
                     pending_.assign(sf->begin(), sf->end());
                     // A pose inside the frame updates pending_pose_ as it is met.
-                    const bool any_scan = std::any_of(pending_.begin(), pending_.end(),
-                                                      [](const auto& o) { return o && isScan(*o); });
-                    const bool any_pose =
-                        std::any_of(pending_.begin(), pending_.end(), [](const auto& o)
-                                    { return o && IS_CLASS(*o, CObservationRobotPose); });
+                    const bool any_scan =
+                        std::any_of(pending_.begin(), pending_.end(),
+                                    [](const auto& o) { return o && isScan(*o); });
+                    const bool any_pose = std::any_of(
+                        pending_.begin(), pending_.end(),
+                        [](const auto& o) { return o && IS_CLASS(*o, CObservationRobotPose); });
                     if (any_scan && !have_pose_ && !any_pose)
                         throw std::runtime_error(
                             "rawlog '" + path_ + "': scan " + std::to_string(scans_read_) +

@@ -63,7 +63,7 @@ private:
     std::unique_ptr<mrpt::io::CFileGZInputStream> in_;
     mrpt::maps::CSimpleMap simplemap_;
     std::vector<std::string> pcd_files_;
-    std::size_t pos_ = 0;  // next simplemap entry / pcd file
+    std::size_t pos_ = 0;                                // next simplemap entry / pcd file
     std::vector<mrpt::obs::CObservation::Ptr> pending_;  // rest of a sensory frame
     mrpt::poses::CPose3D pending_pose_;
     bool have_pose_ = false;

@@ -40,12 +40,14 @@ double msSince(Clock::time_point t0)
     return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-/** The shipped KITTI configuration: installed copy first, then the source tree's. */
-std::string defaultConfig()
+/** The shipped KITTI configuration for the mode: installed copy first, then the source tree's. */
+std::string defaultConfig(bool online)
 {
-    for (const std::string& dir : {std::string(HIF_INSTALLED_SHARE_DIR), std::string(HIF_SOURCE_SHARE_DIR)})
-        if (fs::exists(dir + "/config/kitti.ini")) return dir + "/config/kitti.ini";
-    throw std::runtime_error("the default configuration kitti.ini was not found in '" +
+    const std::string name = online ? "kitti-online.ini" : "kitti.ini";
+    for (const std::string& dir :
+         {std::string(HIF_INSTALLED_SHARE_DIR), std::string(HIF_SOURCE_SHARE_DIR)})
+        if (fs::exists(dir + "/config/" + name)) return dir + "/config/" + name;
+    throw std::runtime_error("the default configuration " + name + " was not found in '" +
                              std::string(HIF_INSTALLED_SHARE_DIR) + "/config' nor '" +
                              std::string(HIF_SOURCE_SHARE_DIR) + "/config'; pass -c");
 }
@@ -61,17 +63,27 @@ struct Cli
         "order), map.hifmap (the serialized map) and summary.json.",
         ' ', "0.1"};
     TCLAP::ValueArg<std::string> input{
-        "i", "input",
+        "i",
+        "input",
         "Input: an MRPT rawlog with a CObservationRobotPose before each scan (as kitti2rawlog "
         "writes), a .simplemap, or a DynamicMap benchmark folder (pcd/NNNNNN.pcd)",
-        true, "", "in.rawlog|in.simplemap|folder", cmd};
-    TCLAP::ValueArg<std::string> output{"o", "output", "Output folder (created if needed)",
-                                        true, "", "folder", cmd};
+        true,
+        "",
+        "in.rawlog|in.simplemap|folder",
+        cmd};
+    TCLAP::ValueArg<std::string> output{
+        "o", "output", "Output folder (created if needed)", true, "", "folder", cmd};
     TCLAP::ValueArg<std::string> config{
-        "c", "config", "Map definition .ini (default: the shipped share/hif/config/kitti.ini)",
-        false, "", "config.ini", cmd};
+        "c",
+        "config",
+        "Map definition .ini (default: the shipped share/hif/config/kitti.ini, or "
+        "kitti-online.ini with --online)",
+        false,
+        "",
+        "config.ini",
+        cmd};
     TCLAP::ValueArg<std::string> section{
-        "", "section", "Section of the .ini with the map list (default: map)", false, "map",
+        "",     "section", "Section of the .ini with the map list (default: map)", false, "map",
         "name", cmd};
     TCLAP::SwitchArg online{
         "", "online",
@@ -80,10 +92,14 @@ struct Cli
         "against the final map (two passes over the input)",
         cmd};
     TCLAP::ValueArg<std::size_t> first_frame{
-        "", "first-frame",
+        "",
+        "first-frame",
         "Number of the first prediction file, e.g. the --first given to kitti2rawlog "
         "(default: 0)",
-        false, 0, "N", cmd};
+        false,
+        0,
+        "N",
+        cmd};
     TCLAP::SwitchArg overwrite{"", "overwrite",
                                "Replace earlier results in the output folder (and "
                                "hif_output.pcd in a DynamicMap folder)",
@@ -101,7 +117,8 @@ void worldPoints(const hif::apps::Scan& scan, std::vector<float>& x, std::vector
                                  std::string(scan.obs->GetRuntimeClass()->className));
     intensity.assign(x.size(), 0.0f);
     if (const auto* pc = dynamic_cast<const mrpt::obs::CObservationPointCloud*>(scan.obs.get()))
-        if (const auto* xyzi = dynamic_cast<const mrpt::maps::CPointsMapXYZI*>(pc->pointcloud.get()))
+        if (const auto* xyzi =
+                dynamic_cast<const mrpt::maps::CPointsMapXYZI*>(pc->pointcloud.get()))
             for (std::size_t i = 0; i < x.size() && i < xyzi->size(); ++i)
                 intensity[i] = xyzi->getPointIntensity_fast(i);
 }
@@ -165,9 +182,9 @@ int run(Cli& cli)
 {
     const auto t_start = Clock::now();
     const std::string out_dir = cli.output.getValue();
-    const std::string cfg_file = cli.config.isSet() ? cli.config.getValue() : defaultConfig();
-    if (!fs::exists(cfg_file)) throw std::runtime_error("config '" + cfg_file + "' not found");
     const bool online = cli.online.getValue();
+    const std::string cfg_file = cli.config.isSet() ? cli.config.getValue() : defaultConfig(online);
+    if (!fs::exists(cfg_file)) throw std::runtime_error("config '" + cfg_file + "' not found");
 
     // Refuse to replace earlier results unless asked.
     for (const char* f : {"summary.json", "map.hifmap", "static_map.ply", "static_map.pcd",
@@ -177,7 +194,8 @@ int run(Cli& cli)
     hif::apps::ScanReader reader(cli.input.getValue());
     const bool dynamicmap = reader.kind() == hif::apps::ScanReader::Kind::DynamicMapFolder;
     const std::string dm_output = cli.input.getValue() + "/hif_output.pcd";
-    if (dynamicmap) hif::apps::refuseToOverwrite(dm_output, cli.overwrite.getValue(), "--overwrite");
+    if (dynamicmap)
+        hif::apps::refuseToOverwrite(dm_output, cli.overwrite.getValue(), "--overwrite");
 
     // Maps from the .ini, through MRPT's own machinery.
     mrpt::config::CConfigFile cfg(cfg_file);
@@ -186,9 +204,9 @@ int run(Cli& cli)
     mrpt::maps::CMultiMetricMap maps(inits);
     const auto hif_map = maps.mapByClass<hif::CHeightIntervalMap>();
     if (!hif_map)
-        throw std::runtime_error("config '" + cfg_file + "', section [" +
-                                 cli.section.getValue() +
-                                 "] defines no CHeightIntervalMap (set CHeightIntervalMap_count=1)");
+        throw std::runtime_error(
+            "config '" + cfg_file + "', section [" + cli.section.getValue() +
+            "] defines no CHeightIntervalMap (set CHeightIntervalMap_count=1)");
     const hif::Params prm = hif_map->params();
 
     hif::apps::makeDirs(out_dir);
@@ -233,8 +251,7 @@ int run(Cli& cli)
         }
         progress.finish();
     }
-    if (scans == 0)
-        throw std::runtime_error("input '" + cli.input.getValue() + "' holds no scans");
+    if (scans == 0) throw std::runtime_error("input '" + cli.input.getValue() + "' holds no scans");
 
     // Pass 2 (offline): classify every point of every scan against the final map.
     if (!online)
@@ -258,13 +275,12 @@ int run(Cli& cli)
     {
         mrpt::io::CFileGZOutputStream f;
         if (!f.open(out_dir + "/map.hifmap", 1))
-            throw std::runtime_error("Error writing to target file '" + out_dir +
-                                     "/map.hifmap'");
+            throw std::runtime_error("Error writing to target file '" + out_dir + "/map.hifmap'");
         auto arch = mrpt::serialization::archiveFrom(f);
         arch << *hif_map;
     }
-    if (dynamicmap) fs::copy_file(out_dir + "/static_map.pcd", dm_output,
-                                  fs::copy_options::overwrite_existing);
+    if (dynamicmap)
+        fs::copy_file(out_dir + "/static_map.pcd", dm_output, fs::copy_options::overwrite_existing);
     const double files_ms = msSince(t_files) + out.write_ms_total;
 
     const auto ins = hif::apps::timeStats(insert_ms);
@@ -317,20 +333,22 @@ int run(Cli& cli)
         std::ofstream f(out_dir + "/summary.json");
         f << std::setw(2) << j << "\n";
         if (!f)
-            throw std::runtime_error("Error writing to target file '" + out_dir +
-                                     "/summary.json'");
+            throw std::runtime_error("Error writing to target file '" + out_dir + "/summary.json'");
     }
 
     std::cout << std::fixed << std::setprecision(2) << kTag << " scans " << scans << ", points "
-              << out.points_in << ": kept " << out.points_kept << ", removed "
-              << out.points_removed << " (" << 100.0 * double(out.points_removed) / double(std::max<std::size_t>(1, out.points_in))
-              << "%)" << (out.points_invalid ? ", invalid " + std::to_string(out.points_invalid) : "")
+              << out.points_in << ": kept " << out.points_kept << ", removed " << out.points_removed
+              << " ("
+              << 100.0 * double(out.points_removed) /
+                     double(std::max<std::size_t>(1, out.points_in))
+              << "%)"
+              << (out.points_invalid ? ", invalid " + std::to_string(out.points_invalid) : "")
               << "\n"
               << kTag << " map: " << hif_map->pillarCount() << " pillars, "
               << hif_map->intervalCount() << " intervals\n"
-              << kTag << " ms per scan (" << (online ? "insert+classify" : "insert")
-              << "): median " << per_scan.median << ", p90 " << per_scan.p90 << ", max "
-              << per_scan.max << "; classify median " << cls.median << "\n"
+              << kTag << " ms per scan (" << (online ? "insert+classify" : "insert") << "): median "
+              << per_scan.median << ", p90 " << per_scan.p90 << ", max " << per_scan.max
+              << "; classify median " << cls.median << "\n"
               << kTag << " total " << total_s << " s, peak memory " << rss << " MiB\n"
               << kTag << " wrote " << out_dir << "/{static_map,removed}.{ply,pcd}, predictions/, "
               << "map.hifmap, summary.json" << (dynamicmap ? " and " + dm_output : "") << "\n";

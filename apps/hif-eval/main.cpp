@@ -28,15 +28,22 @@ struct Cli
         "anything else = static) against ground-truth labels, point by point: labels 0 and 1 "
         "are not scored, classes 252-259 are dynamic. SA = static kept / static, DA = dynamic "
         "removed / dynamic, AA = sqrt(SA DA), HA = their harmonic mean, in percent. Every "
-        "prediction file is scored; each needs a label file of the same name and size.",
+        "prediction file that has a label file of the same name is scored (the sizes must "
+        "match); predictions without ground truth (e.g. scans past the labelled part of a "
+        "sequence) are counted and reported.",
         ' ', "0.1"};
-    TCLAP::ValueArg<std::string> labels{"", "labels", "Ground-truth folder (NNNNNN.label)", true,
-                                        "", "folder", cmd};
+    TCLAP::ValueArg<std::string> labels{
+        "", "labels", "Ground-truth folder (NNNNNN.label)", true, "", "folder", cmd};
     TCLAP::ValueArg<std::string> predictions{
-        "", "predictions", "Predictions folder (NNNNNN.label, as hif-clean writes)", true, "",
-        "folder", cmd};
-    TCLAP::ValueArg<std::string> json{"", "json", "Also write the scores to this JSON file",
-                                      false, "", "file.json", cmd};
+        "",
+        "predictions",
+        "Predictions folder (NNNNNN.label, as hif-clean writes)",
+        true,
+        "",
+        "folder",
+        cmd};
+    TCLAP::ValueArg<std::string> json{
+        "", "json", "Also write the scores to this JSON file", false, "", "file.json", cmd};
     TCLAP::SwitchArg quiet{"q", "quiet", "Print the total only, not every scan", cmd};
 };
 
@@ -70,6 +77,7 @@ int run(Cli& cli)
     if (names.empty()) throw std::runtime_error("no .label files in '" + pred_dir + "'");
 
     hif::apps::Scores total;
+    std::size_t without_truth = 0, scored = 0;
     nlohmann::ordered_json scans = nlohmann::ordered_json::array();
     if (!cli.quiet.getValue())
         std::printf("%-14s %9s %9s %7s %7s %7s %7s\n", "scan", "static", "dynamic", "SA", "DA",
@@ -78,8 +86,11 @@ int run(Cli& cli)
     {
         const std::string truth_file = (fs::path(label_dir) / name).string();
         if (!fs::exists(truth_file))
-            throw std::runtime_error("no ground truth '" + truth_file + "' for prediction '" +
-                                     (fs::path(pred_dir) / name).string() + "'");
+        {
+            ++without_truth;
+            continue;
+        }
+        ++scored;
         const auto truth = hif::apps::readLabels(truth_file);
         const auto pred = hif::apps::readLabels((fs::path(pred_dir) / name).string());
         if (truth.size() != pred.size())
@@ -98,24 +109,31 @@ int run(Cli& cli)
                         fs::path(name).stem().string().c_str(), s.static_total, s.dynamic_total,
                         s.sa(), s.da(), s.aa(), s.ha());
     }
+    if (scored == 0)
+        throw std::runtime_error("none of the " + std::to_string(names.size()) +
+                                 " predictions in '" + pred_dir + "' has a label file in '" +
+                                 label_dir + "'");
+    if (without_truth > 0)
+        std::printf("[hif-eval] %zu of %zu predictions have no label file in '%s': not scored\n",
+                    without_truth, names.size(), label_dir.c_str());
     std::printf("%-14s %9zu %9zu %7.2f %7.2f %7.2f %7.2f\n", "TOTAL", total.static_total,
                 total.dynamic_total, total.sa(), total.da(), total.aa(), total.ha());
-    std::printf("[hif-eval] %zu scans: SA %.2f  DA %.2f  AA %.2f  HA %.2f\n", names.size(),
-                total.sa(), total.da(), total.aa(), total.ha());
+    std::printf("[hif-eval] %zu scans: SA %.2f  DA %.2f  AA %.2f  HA %.2f\n", scored, total.sa(),
+                total.da(), total.aa(), total.ha());
 
     if (cli.json.isSet())
     {
         nlohmann::ordered_json j;
         j["labels"] = label_dir;
         j["predictions"] = pred_dir;
-        j["scans_scored"] = names.size();
+        j["scans_scored"] = scored;
+        j["predictions_without_labels"] = without_truth;
         j["total"] = toJson(total);
         j["per_scan"] = scans;
         std::ofstream f(cli.json.getValue());
         f << std::setw(2) << j << "\n";
         if (!f)
-            throw std::runtime_error("Error writing to target file '" + cli.json.getValue() +
-                                     "'");
+            throw std::runtime_error("Error writing to target file '" + cli.json.getValue() + "'");
     }
     return 0;
 }

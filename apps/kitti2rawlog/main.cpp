@@ -35,23 +35,26 @@ struct Cli
         ' ', "0.1"};
     TCLAP::ValueArg<std::string> input{
         "i", "input", "KITTI sequence folder (e.g. .../sequences/08)", true, "", "folder", cmd};
-    TCLAP::ValueArg<std::string> output{"o", "output", "Output rawlog file", true, "",
+    TCLAP::ValueArg<std::string> output{"o",          "output", "Output rawlog file", true, "",
                                         "out.rawlog", cmd};
-    TCLAP::ValueArg<std::size_t> first{"", "first", "First scan to convert (default: 0)", false,
-                                       0, "N", cmd};
-    TCLAP::ValueArg<long> last{"", "last",
-                               "Last scan to convert, inclusive (default: the last one)", false,
-                               -1, "M", cmd};
+    TCLAP::ValueArg<std::size_t> first{"",  "first", "First scan to convert (default: 0)", false, 0,
+                                       "N", cmd};
+    TCLAP::ValueArg<long> last{
+        "", "last", "Last scan to convert, inclusive (default: the last one)", false, -1, "M", cmd};
     TCLAP::SwitchArg external{
         "", "external",
         "Do not copy the points: each observation refers to its KITTI .bin file by absolute "
         "path (MRPT lazy-load, ExternalStorageFormat::KittiBinFile); the rawlog is then tiny "
         "but needs the sequence folder to stay where it is",
         cmd};
-    TCLAP::ValueArg<int> compress{"z", "compress-level",
+    TCLAP::ValueArg<int> compress{"z",
+                                  "compress-level",
                                   "gzip compression level 1-9 of the rawlog; 0 writes it "
                                   "uncompressed (default: 0, the fastest to read)",
-                                  false, 0, "0-9", cmd};
+                                  false,
+                                  0,
+                                  "0-9",
+                                  cmd};
     TCLAP::SwitchArg overwrite{"", "overwrite", "Replace the output file if it exists", cmd};
 };
 
@@ -71,19 +74,20 @@ int run(Cli& cli)
                                  std::to_string(last));
     const int level = cli.compress.getValue();
     if (level < 0 || level > 9)
-        throw std::runtime_error("--compress-level " + std::to_string(level) +
-                                 " is not in 0-9");
+        throw std::runtime_error("--compress-level " + std::to_string(level) + " is not in 0-9");
     const std::string out_file = cli.output.getValue();
     hif::apps::refuseToOverwrite(out_file, cli.overwrite.getValue(), "--overwrite");
 
     // Check every scan (and label file) before writing anything.
-    std::size_t total_points = 0;
+    std::size_t total_points = 0, labelled = 0;
     for (std::size_t i = first; i <= last; ++i)
     {
         const std::size_t pts = seq.pointCount(i);
         total_points += pts;
-        if (seq.hasLabels())
+        // SemanticKITTI may label only part of a sequence: check the label files present.
+        if (seq.hasLabels() && std::filesystem::exists(seq.labelFile(i)))
         {
+            ++labelled;
             const std::size_t nl = hif::apps::readLabels(seq.labelFile(i)).size();
             if (nl != pts)
                 throw std::runtime_error("'" + seq.labelFile(i) + "' has " + std::to_string(nl) +
@@ -91,13 +95,12 @@ int run(Cli& cli)
                                          seq.scanFile(i) + "'");
         }
     }
-    std::cout << tag << " sequence '" << seq.dir() << "': scans " << first << ".." << last
-              << " of " << n << ", " << total_points << " points"
-              << (seq.hasLabels() ? ", labels checked" : ", no labels") << "\n"
+    std::cout << tag << " sequence '" << seq.dir() << "': scans " << first << ".." << last << " of "
+              << n << ", " << total_points << " points"
+              << ", labels present and checked for " << labelled << " of them\n"
               << tag << " writing '" << out_file << "' ("
               << (cli.external.getValue() ? "points in the KITTI files" : "points inline")
-              << (level > 0 ? ", gzip level " + std::to_string(level) : ", uncompressed")
-              << ")\n";
+              << (level > 0 ? ", gzip level " + std::to_string(level) : ", uncompressed") << ")\n";
 
     std::unique_ptr<mrpt::io::CStream> stream;
     if (level > 0)
@@ -110,8 +113,7 @@ int run(Cli& cli)
     else
     {
         auto plain = std::make_unique<mrpt::io::CFileOutputStream>();
-        if (!plain->open(out_file))
-            throw std::runtime_error("cannot create '" + out_file + "'");
+        if (!plain->open(out_file)) throw std::runtime_error("cannot create '" + out_file + "'");
         stream = std::move(plain);
     }
     auto arch = mrpt::serialization::archiveFrom(*stream);

@@ -236,15 +236,21 @@ TEST(CHeightIntervalMapSerialization, TruncatedDataThrows)
     EXPECT_THROW(in >> loaded, std::exception);
 }
 
-TEST(CHeightIntervalMapIni, ShippedKittiConfigLoadsTheDocumentedDefaults)
+TEST(CHeightIntervalMapIni, ShippedKittiConfigsLoadTheDocumentedDefaults)
 {
-    mrpt::config::CConfigFile cfg(HIF_SHARE_DIR "/config/kitti.ini");
-    mrpt::maps::TSetOfMetricMapInitializers inits;
-    inits.loadFromConfigFile(cfg, "map");
-    mrpt::maps::CMultiMetricMap multi(inits);
-    const auto map = multi.mapByClass<CHeightIntervalMap>();
-    ASSERT_TRUE(map);
-    EXPECT_EQ(map->params(), hif::Params());
+    for (const char* name : {"kitti.ini", "kitti-online.ini"})
+    {
+        mrpt::config::CConfigFile cfg(std::string(HIF_SHARE_DIR "/config/") + name);
+        mrpt::maps::TSetOfMetricMapInitializers inits;
+        inits.loadFromConfigFile(cfg, "map");
+        mrpt::maps::CMultiMetricMap multi(inits);
+        const auto map = multi.mapByClass<CHeightIntervalMap>();
+        ASSERT_TRUE(map) << name;
+        // The offline default differs from hif::Params() in p_empty_init only (doc/algorithm.md).
+        hif::Params expected;
+        if (std::string(name) == "kitti.ini") expected.p_empty_init = 0.42;
+        EXPECT_EQ(map->params(), expected) << name;
+    }
 }
 
 TEST(CHeightIntervalMapIni, ShippedPaperConfigLoadsThePaperSettings)

@@ -61,8 +61,8 @@ void Progress::print(std::size_t done, bool final_line)
     const char* end = (final_line || !tty_) ? "\n" : "";
     if (total_ == 0)
     {
-        std::fprintf(stderr, "%s%s %s %zu scans, %.1f scans/s%s", tty_ ? "\r" : "",
-                     prefix_.c_str(), what_.c_str(), done, rate, end);
+        std::fprintf(stderr, "%s%s %s %zu scans, %.1f scans/s%s", tty_ ? "\r" : "", prefix_.c_str(),
+                     what_.c_str(), done, rate, end);
     }
     else
     {
@@ -120,8 +120,7 @@ void makeDirs(const std::string& dir)
 void refuseToOverwrite(const std::string& file, bool overwrite, const std::string& flag)
 {
     if (!overwrite && std::filesystem::exists(file))
-        throw std::runtime_error("'" + file + "' already exists; pass " + flag +
-                                 " to replace it");
+        throw std::runtime_error("'" + file + "' already exists; pass " + flag + " to replace it");
 }
 
 }  // namespace hif::apps

@@ -1,0 +1,326 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   test_apps.cpp
+ * @brief  The apps end to end, run as a user runs them: hif-eval on a hand-counted example,
+ *         the synthetic pipeline (generate, convert, clean offline and online, evaluate) with
+ *         asserted scores and outputs, the DynamicMap folder layout, real KITTI 03 and 04 with
+ *         asserted floors, and clear errors on bad input.
+ */
+#include <gtest/gtest.h>
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "hif/CHeightIntervalMap.h"
+#include "hif/apps/CloudFiles.h"
+#include "hif/apps/KittiSequence.h"
+#include "hif/apps/Labels.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace
+{
+const std::string kBin = HIF_APPS_DIR;
+const std::string kWork = HIF_TEST_WORK_DIR;
+
+struct Result
+{
+    int code;
+    std::string output;  // stdout and stderr
+};
+
+Result runApp(const std::string& app, const std::string& args)
+{
+    const std::string log = kWork + "/last_command.log";
+    const std::string cmd = kBin + "/" + app + " " + args + " > " + log + " 2>&1";
+    const int status = std::system(cmd.c_str());
+    std::ifstream f(log);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
+}
+
+json readJson(const std::string& file)
+{
+    std::ifstream f(file);
+    EXPECT_TRUE(f.good()) << file;
+    return json::parse(f);
+}
+
+std::string fresh(const std::string& name)
+{
+    const std::string d = kWork + "/" + name;
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+std::string kittiSequence(const std::string& seq)
+{
+    const char* env = std::getenv("HIF_KITTI_DIR");
+    return std::string(env ? env : HIF_DEFAULT_KITTI_DIR) + "/sequences/" + seq;
+}
+
+bool dataRequired()
+{
+    const char* v = std::getenv("HIF_REQUIRE_DATA");
+    return v && std::string(v) == "1";
+}
+}  // namespace
+
+TEST(HifEval, AgreesWithAHandCountedExample)
+{
+    const std::string d = fresh("eval_hand");
+    fs::create_directories(d + "/labels");
+    fs::create_directories(d + "/pred");
+    // Scan 0: truth  road(40) road car(10) moving-car(252) unlabeled(0) moving-person(254|id 3)
+    //         pred   9        251  9       251             251          9
+    // Scored: 3 static (kept 2), 2 dynamic (removed 1); the unlabeled point is ignored.
+    hif::apps::writeLabels(d + "/labels/000000.label", {40, 40, 10, 252, 0, 254u | (3u << 16)});
+    hif::apps::writeLabels(d + "/pred/000000.label", {9, 251, 9, 251, 251, 9});
+    // Scan 1: truth  outlier(1) building(50) moving-bicyclist(253)
+    //         pred   251        9            253 (a moving class also counts as removed)
+    hif::apps::writeLabels(d + "/labels/000001.label", {1, 50, 253});
+    hif::apps::writeLabels(d + "/pred/000001.label", {251, 9, 253});
+    // Totals: static 4, kept 3 -> SA 75; dynamic 3, removed 2 -> DA 66.67;
+    // AA = sqrt(75 * 66.67) = 70.71; HA = 2 * 75 * 66.67 / 141.67 = 70.59.
+    const auto r = runApp("hif-eval", "--labels " + d + "/labels --predictions " + d +
+                                          "/pred --json " + d + "/scores.json");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const json j = readJson(d + "/scores.json");
+    const json& t = j["total"];
+    EXPECT_EQ(t["static_total"], 4);
+    EXPECT_EQ(t["static_kept"], 3);
+    EXPECT_EQ(t["dynamic_total"], 3);
+    EXPECT_EQ(t["dynamic_removed"], 2);
+    EXPECT_EQ(t["ignored"], 2);
+    EXPECT_DOUBLE_EQ(t["SA"].get<double>(), 75.0);
+    EXPECT_NEAR(t["DA"].get<double>(), 200.0 / 3.0, 1e-9);
+    EXPECT_NEAR(t["AA"].get<double>(), std::sqrt(75.0 * 200.0 / 3.0), 1e-9);
+    EXPECT_NEAR(t["HA"].get<double>(), 2 * 75.0 * (200.0 / 3.0) / (75.0 + 200.0 / 3.0), 1e-9);
+    ASSERT_EQ(j["per_scan"].size(), 2u);
+    EXPECT_DOUBLE_EQ(j["per_scan"][0]["SA"].get<double>(), 200.0 / 3.0);
+    EXPECT_DOUBLE_EQ(j["per_scan"][0]["DA"].get<double>(), 50.0);
+    EXPECT_DOUBLE_EQ(j["per_scan"][1]["DA"].get<double>(), 100.0);
+    EXPECT_NE(r.output.find("SA 75.00  DA 66.67  AA 70.71  HA 70.59"), std::string::npos)
+        << r.output;
+
+    // A prediction whose size differs from its labels is an error naming both files.
+    hif::apps::writeLabels(d + "/pred/000001.label", {251, 9});
+    const auto bad = runApp("hif-eval", "--labels " + d + "/labels --predictions " + d + "/pred");
+    EXPECT_NE(bad.code, 0);
+    EXPECT_NE(bad.output.find("000001.label' has 2 points"), std::string::npos) << bad.output;
+}
+
+class SyntheticPipeline : public ::testing::Test
+{
+protected:
+    // CTest runs each test in its own process, two at a time: one folder per process.
+    static void SetUpTestSuite()
+    {
+        root_ = fresh("synthetic_" + std::to_string(getpid()));
+        const auto g = runApp("hif-synthetic-kitti", "-o " + root_ + "/seq --scans 20");
+        const auto c = g.code == 0 ? runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + root_ +
+                                                                "/scans.rawlog")
+                                   : g;
+        setup_ok_ = g.code == 0 && c.code == 0;
+        setup_log_ = g.output + c.output;
+    }
+    // A failed set-up fails every test (gtest would report them as skipped).
+    void SetUp() override { ASSERT_TRUE(setup_ok_) << setup_log_; }
+    static std::string root_, setup_log_;
+    static bool setup_ok_;
+};
+std::string SyntheticPipeline::root_, SyntheticPipeline::setup_log_;
+bool SyntheticPipeline::setup_ok_ = false;
+
+TEST_F(SyntheticPipeline, OfflineAndOnlineCleaningScoreAndWriteEverything)
+{
+    for (const std::string mode : {"offline", "online"})
+    {
+        SCOPED_TRACE(mode);
+        const std::string out = root_ + "/" + mode;
+        const auto r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + out + " -q" +
+                                               (mode == "online" ? " --online" : ""));
+        ASSERT_EQ(r.code, 0) << r.output;
+        const auto e = runApp("hif-eval", "--labels " + root_ + "/seq/labels --predictions " +
+                                              out + "/predictions --json " + out + "/scores.json");
+        ASSERT_EQ(e.code, 0) << e.output;
+        const json s = readJson(out + "/scores.json")["total"];
+        // Measured: offline SA 99.7 / DA 97.6, online SA 99.0 / DA 96.0 (30 scans).
+        EXPECT_GE(s["SA"].get<double>(), mode == "offline" ? 99.0 : 98.0);
+        EXPECT_GE(s["DA"].get<double>(), mode == "offline" ? 95.0 : 90.0);
+        EXPECT_GT(s["dynamic_total"].get<int>(), 10000);
+
+        const json sum = readJson(out + "/summary.json");
+        EXPECT_EQ(sum["scans"], 20);
+        EXPECT_EQ(sum["mode"], mode);
+        const auto in = sum["points_in"].get<std::size_t>();
+        const auto kept = sum["points_kept"].get<std::size_t>();
+        const auto removed = sum["points_removed"].get<std::size_t>();
+        EXPECT_EQ(kept + removed, in);
+        for (const char* k : {"scan_ms_median", "scan_ms_p90", "scan_ms_max", "peak_rss_mb"})
+            EXPECT_GT(sum[k].get<double>(), 0.0) << k;
+        EXPECT_LE(sum["scan_ms_median"].get<double>(), sum["scan_ms_p90"].get<double>());
+        EXPECT_LE(sum["scan_ms_p90"].get<double>(), sum["scan_ms_max"].get<double>());
+
+        // One prediction per scan, one label per input point.
+        std::size_t labels = 0;
+        for (int i = 0; i < 20; ++i)
+            labels += hif::apps::readLabels(out + "/predictions/" + hif::apps::frameName(i) +
+                                            ".label")
+                          .size();
+        EXPECT_EQ(labels, in);
+        // The clouds hold exactly the kept and the removed points.
+        EXPECT_EQ(hif::apps::readPcd(out + "/static_map.pcd").x.size(), kept);
+        EXPECT_EQ(hif::apps::readPcd(out + "/removed.pcd").x.size(), removed);
+        std::ifstream ply(out + "/static_map.ply");
+        std::string line, vertex;
+        while (std::getline(ply, line) && line != "end_header")
+            if (line.rfind("element vertex ", 0) == 0) vertex = line.substr(15);
+        EXPECT_EQ(vertex, std::to_string(kept));
+
+        // The saved map loads back through MRPT's class factory, as the one that was used.
+        mrpt::io::CFileGZInputStream f(out + "/map.hifmap");
+        auto arch = mrpt::serialization::archiveFrom(f);
+        const auto map = std::dynamic_pointer_cast<hif::CHeightIntervalMap>(arch.ReadObject());
+        ASSERT_TRUE(map);
+        EXPECT_EQ(map->pillarCount(), sum["pillars"].get<std::size_t>());
+        EXPECT_EQ(map->intervalCount(), sum["intervals"].get<std::size_t>());
+    }
+}
+
+TEST_F(SyntheticPipeline, RefusesToOverwriteAndNamesBadInput)
+{
+    // The rawlog exists: kitti2rawlog does not replace it unless told to.
+    auto r = runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + root_ + "/scans.rawlog");
+    EXPECT_NE(r.code, 0);
+    EXPECT_NE(r.output.find("already exists; pass --overwrite"), std::string::npos) << r.output;
+    // A missing input is named.
+    r = runApp("hif-clean", "-i " + root_ + "/nothing.rawlog -o " + root_ + "/x");
+    EXPECT_NE(r.code, 0);
+    EXPECT_NE(r.output.find("nothing.rawlog' does not exist"), std::string::npos) << r.output;
+    // A truncated rawlog is an error naming the file, not a silent partial map.
+    {
+        std::ifstream in(root_ + "/scans.rawlog", std::ios::binary);
+        std::vector<char> bytes((std::istreambuf_iterator<char>(in)), {});
+        std::ofstream out(root_ + "/truncated.rawlog", std::ios::binary);
+        out.write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2 + 7));
+    }
+    r = runApp("hif-clean", "-i " + root_ + "/truncated.rawlog -o " + root_ + "/trunc -q");
+    EXPECT_NE(r.code, 0);
+    EXPECT_NE(r.output.find("truncated.rawlog' is corrupt or truncated"), std::string::npos)
+        << r.output;
+    // A short pose file is named with the counts.
+    const std::string bad = fresh("short_poses");
+    fs::copy(root_ + "/seq", bad, fs::copy_options::recursive);
+    {
+        std::ifstream in(bad + "/poses.txt");
+        std::string first;
+        std::getline(in, first);
+        in.close();
+        std::ofstream out(bad + "/poses.txt", std::ios::trunc);
+        out << first << "\n";
+    }
+    r = runApp("kitti2rawlog", "-i " + bad + " -o " + bad + "/x.rawlog");
+    EXPECT_NE(r.code, 0);
+    EXPECT_NE(r.output.find("poses.txt' has 1 poses for 20 scans"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(bad + "/x.rawlog"));
+    // A bad config value is named with its section.
+    {
+        std::ifstream in(HIF_SHARE_DIR "/config/kitti.ini");
+        std::stringstream ss;
+        ss << in.rdbuf();
+        std::string ini = ss.str();
+        ini.replace(ini.find("alpha=0.6"), 9, "alpha=0.4");
+        std::ofstream(bad + "/bad.ini") << ini;
+    }
+    r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + bad + "/out -c " + bad +
+                                "/bad.ini");
+    EXPECT_NE(r.code, 0);
+    EXPECT_NE(r.output.find("invalid alpha = 0.4"), std::string::npos) << r.output;
+}
+
+TEST_F(SyntheticPipeline, DynamicMapFolderLayoutIsReadAndItsOutputWritten)
+{
+    // Build the benchmark's layout from the synthetic sequence: pcd/NNNNNN.pcd with world
+    // points and the sensor pose in VIEWPOINT.
+    const std::string dm = fresh("dynamicmap");
+    fs::create_directories(dm + "/pcd");
+    const hif::apps::KittiSequence seq(root_ + "/seq");
+    for (std::size_t i = 0; i < seq.size(); ++i)
+    {
+        std::ifstream bin(seq.scanFile(i), std::ios::binary);
+        std::vector<float> p(seq.pointCount(i) * 4);
+        bin.read(reinterpret_cast<char*>(p.data()), static_cast<std::streamsize>(p.size() * 4));
+        const Eigen::Isometry3d T = seq.pose(i);
+        const Eigen::Quaterniond q(T.linear());
+        std::ofstream f(dm + "/pcd/" + hif::apps::frameName(i) + ".pcd");
+        f << "VERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\n"
+          << "WIDTH " << p.size() / 4 << "\nHEIGHT 1\nVIEWPOINT " << T.translation().x() << " "
+          << T.translation().y() << " " << T.translation().z() << " " << q.w() << " " << q.x()
+          << " " << q.y() << " " << q.z() << "\nPOINTS " << p.size() / 4 << "\nDATA ascii\n";
+        for (std::size_t k = 0; k < p.size(); k += 4)
+        {
+            const Eigen::Vector3d w = T * Eigen::Vector3d(p[k], p[k + 1], p[k + 2]);
+            f << w.x() << " " << w.y() << " " << w.z() << " " << p[k + 3] << "\n";
+        }
+    }
+    const auto r = runApp("hif-clean", "-i " + dm + " -o " + dm + "/out -q");
+    ASSERT_EQ(r.code, 0) << r.output;
+    ASSERT_TRUE(fs::exists(dm + "/hif_output.pcd")) << r.output;
+    const json sum = readJson(dm + "/out/summary.json");
+    EXPECT_EQ(sum["scans"], 20);
+    EXPECT_EQ(hif::apps::readPcd(dm + "/hif_output.pcd").x.size(),
+              sum["points_kept"].get<std::size_t>());
+    const auto e = runApp("hif-eval", "--labels " + root_ + "/seq/labels --predictions " + dm +
+                                          "/out/predictions --json " + dm + "/scores.json");
+    ASSERT_EQ(e.code, 0) << e.output;
+    const json s = readJson(dm + "/scores.json")["total"];
+    EXPECT_GE(s["SA"].get<double>(), 99.0);
+    EXPECT_GE(s["DA"].get<double>(), 95.0);
+    // A second run does not replace the benchmark output without --overwrite.
+    const auto again = runApp("hif-clean", "-i " + dm + " -o " + dm + "/out2 -q");
+    EXPECT_NE(again.code, 0);
+    EXPECT_NE(again.output.find("hif_output.pcd' already exists"), std::string::npos);
+}
+
+class RealKitti : public ::testing::TestWithParam<std::tuple<std::string, double, double>>
+{
+};
+
+TEST_P(RealKitti, OfflineCleaningMeetsTheFloors)
+{
+    const auto& [seq, sa_floor, aa_floor] = GetParam();
+    const std::string dir = kittiSequence(seq);
+    if (!fs::is_directory(dir))
+    {
+        if (dataRequired()) FAIL() << "KITTI data missing at " << dir << " and HIF_REQUIRE_DATA=1";
+        GTEST_SKIP() << "KITTI data not found at " << dir << " (set HIF_KITTI_DIR); skipping";
+    }
+    const std::string w = fresh("kitti" + seq);
+    auto r = runApp("kitti2rawlog", "-i " + dir + " -o " + w + "/scans.rawlog --external");
+    ASSERT_EQ(r.code, 0) << r.output;
+    r = runApp("hif-clean", "-i " + w + "/scans.rawlog -o " + w + "/out -q");
+    ASSERT_EQ(r.code, 0) << r.output;
+    r = runApp("hif-eval", "--labels " + dir + "/labels --predictions " + w +
+                               "/out/predictions --json " + w + "/scores.json");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const json s = readJson(w + "/scores.json")["total"];
+    EXPECT_GE(s["SA"].get<double>(), sa_floor) << r.output;
+    EXPECT_GE(s["AA"].get<double>(), aa_floor) << r.output;
+}
+
+// Floors a little under what the shipped kitti.ini measures (03: SA 98.00; 04: SA 98.56,
+// AA 95.08), so that a regression fails and noise does not.
+INSTANTIATE_TEST_SUITE_P(Sequences, RealKitti,
+                         ::testing::Values(std::make_tuple("03", 97.8, 98.0),
+                                           std::make_tuple("04", 98.3, 94.8)));
