@@ -67,8 +67,9 @@ struct Mover
         const Eigen::Vector3d c = start + velocity * t;
         const Eigen::Vector3d half(size.x() / 2, size.y() / 2, 0);
         const double gz = groundZ(c.x());
-        return {Eigen::Vector3d(c.x() - half.x(), c.y() - half.y(), gz + 0.15 * (label == kMovingCar)),
-                Eigen::Vector3d(c.x() + half.x(), c.y() + half.y(), gz + size.z()), label};
+        return {
+            Eigen::Vector3d(c.x() - half.x(), c.y() - half.y(), gz + 0.15 * (label == kMovingCar)),
+            Eigen::Vector3d(c.x() + half.x(), c.y() + half.y(), gz + size.z()), label};
     }
 };
 
@@ -144,8 +145,8 @@ struct Scene
             {
                 const double y = side * (9.5 + u(rng)), gz = groundZ(x);
                 cylinders.push_back({x, y, 0.2, gz - 0.5, gz + 3.0, kTrunk});
-                spheres.push_back({Eigen::Vector3d(x, y, gz + 4.0), 1.5 + 0.5 * u(rng),
-                                   kVegetation});
+                spheres.push_back(
+                    {Eigen::Vector3d(x, y, gz + 4.0), 1.5 + 0.5 * u(rng), kVegetation});
             }
         // Parked cars along both kerbs.
         for (int side : {-1, 1})
@@ -191,7 +192,8 @@ struct Scene
             hitBox(o, d, m.at(t_now), m.label, h);
             if (h.t != t_before || h.label != before) instance = m.instance;
         }
-        if (h.t >= max_range) h.label = 0;
+        if (h.t >= max_range)
+            h.label = 0;
         else if (instance != 0 && !(h.label == kMovingCar || h.label == kMovingPerson))
             instance = 0;
         return h;
@@ -207,11 +209,11 @@ struct Cli
         "down a sloping street with buildings, trees and parked cars, while cars (class 252) "
         "and people (254) move.",
         ' ', "0.1"};
-    TCLAP::ValueArg<std::string> output{"o", "output", "Output sequence folder", true, "",
+    TCLAP::ValueArg<std::string> output{"o",      "output", "Output sequence folder", true, "",
                                         "folder", cmd};
     TCLAP::ValueArg<std::size_t> scans{"n", "scans", "Number of scans (default: 30)", false, 30,
                                        "N", cmd};
-    TCLAP::ValueArg<unsigned> seed{"", "seed", "Random seed of the scene (default: 1)", false, 1,
+    TCLAP::ValueArg<unsigned> seed{"",  "seed", "Random seed of the scene (default: 1)", false, 1,
                                    "S", cmd};
     TCLAP::SwitchArg overwrite{"", "overwrite", "Replace an existing sequence folder", cmd};
 };
@@ -296,16 +298,18 @@ int run(Cli& cli)
         std::ofstream bin(dir + "/velodyne/" + name + ".bin", std::ios::binary);
         bin.write(reinterpret_cast<const char*>(pts.data()),
                   static_cast<std::streamsize>(pts.size() * sizeof(float)));
-        if (!bin) throw std::runtime_error("Error writing to target file '" + dir + "/velodyne/" +
-                                           name + ".bin'");
+        if (!bin)
+            throw std::runtime_error("Error writing to target file '" + dir + "/velodyne/" + name +
+                                     ".bin'");
         hif::apps::writeLabels(dir + "/labels/" + name + ".label", labels);
         progress.update(i + 1);
     }
     progress.finish();
     if (!calib || !poses || !times)
-        throw std::runtime_error("Error writing calib.txt, poses.txt or times.txt in '" + dir + "'");
-    std::cout << tag << " wrote " << n << " scans, " << total_points << " points ("
-              << moving_points << " on moving objects) to '" << dir << "'\n";
+        throw std::runtime_error("Error writing calib.txt, poses.txt or times.txt in '" + dir +
+                                 "'");
+    std::cout << tag << " wrote " << n << " scans, " << total_points << " points (" << moving_points
+              << " on moving objects) to '" << dir << "'\n";
     return 0;
 }
 }  // namespace

@@ -128,8 +128,8 @@ protected:
     {
         root_ = fresh("synthetic_" + std::to_string(getpid()));
         const auto g = runApp("hif-synthetic-kitti", "-o " + root_ + "/seq --scans 20");
-        const auto c = g.code == 0 ? runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + root_ +
-                                                                "/scans.rawlog")
+        const auto c = g.code == 0 ? runApp("kitti2rawlog",
+                                            "-i " + root_ + "/seq -o " + root_ + "/scans.rawlog")
                                    : g;
         setup_ok_ = g.code == 0 && c.code == 0;
         setup_log_ = g.output + c.output;
@@ -151,8 +151,8 @@ TEST_F(SyntheticPipeline, OfflineAndOnlineCleaningScoreAndWriteEverything)
         const auto r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + out + " -q" +
                                                (mode == "online" ? " --online" : ""));
         ASSERT_EQ(r.code, 0) << r.output;
-        const auto e = runApp("hif-eval", "--labels " + root_ + "/seq/labels --predictions " +
-                                              out + "/predictions --json " + out + "/scores.json");
+        const auto e = runApp("hif-eval", "--labels " + root_ + "/seq/labels --predictions " + out +
+                                              "/predictions --json " + out + "/scores.json");
         ASSERT_EQ(e.code, 0) << e.output;
         const json s = readJson(out + "/scores.json")["total"];
         // Measured: offline SA 99.7 / DA 97.6, online SA 99.0 / DA 96.0 (30 scans).
@@ -175,9 +175,9 @@ TEST_F(SyntheticPipeline, OfflineAndOnlineCleaningScoreAndWriteEverything)
         // One prediction per scan, one label per input point.
         std::size_t labels = 0;
         for (int i = 0; i < 20; ++i)
-            labels += hif::apps::readLabels(out + "/predictions/" + hif::apps::frameName(i) +
-                                            ".label")
-                          .size();
+            labels +=
+                hif::apps::readLabels(out + "/predictions/" + hif::apps::frameName(i) + ".label")
+                    .size();
         EXPECT_EQ(labels, in);
         // The clouds hold exactly the kept and the removed points.
         EXPECT_EQ(hif::apps::readPcd(out + "/static_map.pcd").x.size(), kept);
@@ -243,8 +243,8 @@ TEST_F(SyntheticPipeline, RefusesToOverwriteAndNamesBadInput)
         ini.replace(ini.find("alpha=0.6"), 9, "alpha=0.4");
         std::ofstream(bad + "/bad.ini") << ini;
     }
-    r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + bad + "/out -c " + bad +
-                                "/bad.ini");
+    r = runApp("hif-clean",
+               "-i " + root_ + "/scans.rawlog -o " + bad + "/out -c " + bad + "/bad.ini");
     EXPECT_NE(r.code, 0);
     EXPECT_NE(r.output.find("invalid alpha = 0.4"), std::string::npos) << r.output;
 }
