@@ -39,7 +39,8 @@ struct Result
 
 Result runApp(const std::string& app, const std::string& args)
 {
-    const std::string log = kWork + "/last_command.log";
+    // One log per process: CTest runs two test processes at a time.
+    const std::string log = kWork + "/last_command_" + std::to_string(getpid()) + ".log";
     const std::string cmd = kBin + "/" + app + " " + args + " > " + log + " 2>&1";
     const int status = std::system(cmd.c_str());
     std::ifstream f(log);
