@@ -22,6 +22,7 @@
 #include "hif/apps/CloudFiles.h"
 #include "hif/apps/KittiSequence.h"
 #include "hif/apps/Labels.h"
+#include "kitti_fixture.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -64,17 +65,6 @@ std::string fresh(const std::string& name)
     return d;
 }
 
-std::string kittiSequence(const std::string& seq)
-{
-    const char* env = std::getenv("HIF_KITTI_DIR");
-    return std::string(env ? env : HIF_DEFAULT_KITTI_DIR) + "/sequences/" + seq;
-}
-
-bool dataRequired()
-{
-    const char* v = std::getenv("HIF_REQUIRE_DATA");
-    return v && std::string(v) == "1";
-}
 }  // namespace
 
 TEST(HifEval, AgreesWithAHandCountedExample)
@@ -301,12 +291,8 @@ class RealKitti : public ::testing::TestWithParam<std::tuple<std::string, double
 TEST_P(RealKitti, OfflineCleaningMeetsTheFloors)
 {
     const auto& [seq, sa_floor, aa_floor] = GetParam();
-    const std::string dir = kittiSequence(seq);
-    if (!fs::is_directory(dir))
-    {
-        if (dataRequired()) FAIL() << "KITTI data missing at " << dir << " and HIF_REQUIRE_DATA=1";
-        GTEST_SKIP() << "KITTI data not found at " << dir << " (set HIF_KITTI_DIR); skipping";
-    }
+    const std::string dir = hif::test::kittiRoot() + "/sequences/" + seq;
+    HIF_REQUIRE_KITTI_SEQUENCE(dir);
     const std::string w = fresh("kitti" + seq);
     auto r = runApp("kitti2rawlog", "-i " + dir + " -o " + w + "/scans.rawlog --external");
     ASSERT_EQ(r.code, 0) << r.output;

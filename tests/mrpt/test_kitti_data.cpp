@@ -4,22 +4,25 @@
  * @brief  The map on real KITTI scans: the interval bound holds and the static map is kept.
  */
 #include <gtest/gtest.h>
+#include <mrpt/maps/CPointsMapXYZI.h>
 #include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/poses/CPose3D.h>
 
 #include <iostream>
 
 #include "hif/CHeightIntervalMap.h"
+#include "hif/apps/KittiSequence.h"
+#include "hif/apps/Labels.h"
 #include "kitti_fixture.h"
 
 using namespace hif;
-using hif::test::KittiSequence;
+using hif::apps::KittiSequence;
 
 namespace
 {
 struct OfflineRun
 {
-    test::Scores scores;
+    apps::Scores scores;
     double mean_intervals = 0;
     std::size_t max_intervals = 0, pillars = 0;
 };
@@ -35,7 +38,7 @@ OfflineRun runOffline(const KittiSequence& seq, int scans, int scored, const Par
         const auto& c = clouds[i];
         grid.insertScan({c.getPointsBufferRef_x().data(), c.getPointsBufferRef_y().data(),
                          c.getPointsBufferRef_z().data(), c.size()},
-                        Eigen::Isometry3d(seq.poses[i]));
+                        seq.pose(i));
     }
     for (int i = 0; i < scored; ++i)
     {
@@ -43,8 +46,8 @@ OfflineRun runOffline(const KittiSequence& seq, int scans, int scored, const Par
         std::vector<uint8_t> dyn;
         grid.classify({c.getPointsBufferRef_x().data(), c.getPointsBufferRef_y().data(),
                        c.getPointsBufferRef_z().data(), c.size()},
-                      dyn, Eigen::Isometry3d(seq.poses[i]));
-        const auto labels = seq.labels(i);
+                      dyn, seq.pose(i));
+        const auto labels = apps::readLabels(seq.labelFile(i));
         EXPECT_EQ(labels.size(), dyn.size()) << seq.labelFile(i);
         for (std::size_t k = 0; k < std::min(labels.size(), dyn.size()); ++k)
             r.scores.add(labels[k], dyn[k] != 0);
