@@ -125,18 +125,17 @@ void worldPoints(const hif::apps::Scan& scan, std::vector<float>& x, std::vector
 
 struct Outputs
 {
-    hif::apps::CloudWriter static_ply, static_pcd, removed_ply, removed_pcd;
+    hif::apps::CloudWriter kept_cloud, removed_cloud;
     std::string pred_dir;
     std::size_t first_frame;
     std::size_t points_in = 0, points_kept = 0, points_removed = 0, points_invalid = 0;
     double classify_ms_total = 0, write_ms_total = 0;
     std::vector<double> classify_ms;
 
-    Outputs(const std::string& dir, std::size_t first)
-        : static_ply(dir + "/static_map.ply"),
-          static_pcd(dir + "/static_map.pcd"),
-          removed_ply(dir + "/removed.ply"),
-          removed_pcd(dir + "/removed.pcd"),
+    /** `static_files` receive the kept points; removed.{ply,pcd} in `dir` the others. */
+    Outputs(const std::string& dir, std::size_t first, std::vector<std::string> static_files)
+        : kept_cloud(std::move(static_files)),
+          removed_cloud({dir + "/removed.ply", dir + "/removed.pcd"}),
           pred_dir(dir + "/predictions"),
           first_frame(first)
     {
@@ -163,10 +162,7 @@ struct Outputs
             labels[i] = dyn[i] ? hif::apps::kLabelMoving : hif::apps::kLabelStatic;
             if (!std::isfinite(buf[0][i]) || !std::isfinite(buf[1][i]) || !std::isfinite(buf[2][i]))
                 continue;  // counted as invalid, labelled moving, not written to a cloud
-            auto& ply = dyn[i] ? removed_ply : static_ply;
-            auto& pcd = dyn[i] ? removed_pcd : static_pcd;
-            ply.add(buf[0][i], buf[1][i], buf[2][i], buf[3][i]);
-            pcd.add(buf[0][i], buf[1][i], buf[2][i], buf[3][i]);
+            (dyn[i] ? removed_cloud : kept_cloud).add(buf[0][i], buf[1][i], buf[2][i], buf[3][i]);
         }
         hif::apps::writeLabels(pred_dir + "/" + hif::apps::frameName(first_frame + k) + ".label",
                                labels);
@@ -220,7 +216,9 @@ int run(Cli& cli)
               << "\n"
               << kTag << " output : " << out_dir << "\n";
 
-    Outputs out(out_dir, cli.first_frame.getValue());
+    std::vector<std::string> static_files{out_dir + "/static_map.ply", out_dir + "/static_map.pcd"};
+    if (dynamicmap) static_files.push_back(dm_output);  // where that benchmark looks
+    Outputs out(out_dir, cli.first_frame.getValue(), std::move(static_files));
     std::vector<double> insert_ms, scan_ms;
     std::vector<float> buf[4];
     hif::apps::Scan scan;
@@ -270,8 +268,8 @@ int run(Cli& cli)
 
     // Files.
     const auto t_files = Clock::now();
-    for (auto* w : {&out.static_ply, &out.static_pcd, &out.removed_ply, &out.removed_pcd})
-        w->close();
+    out.kept_cloud.close();
+    out.removed_cloud.close();
     {
         mrpt::io::CFileGZOutputStream f;
         if (!f.open(out_dir + "/map.hifmap", 1))
@@ -279,8 +277,6 @@ int run(Cli& cli)
         auto arch = mrpt::serialization::archiveFrom(f);
         arch << *hif_map;
     }
-    if (dynamicmap)
-        fs::copy_file(out_dir + "/static_map.pcd", dm_output, fs::copy_options::overwrite_existing);
     const double files_ms = msSince(t_files) + out.write_ms_total;
 
     const auto ins = hif::apps::timeStats(insert_ms);

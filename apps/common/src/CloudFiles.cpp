@@ -28,16 +28,15 @@ bool endsWith(const std::string& s, const std::string& suffix)
 }
 }  // namespace
 
-// The body goes to "<file>.part" as it comes; close() writes the header (which needs the
-// count) into <file> and appends the body. Memory stays constant whatever the map size.
-CloudWriter::CloudWriter(const std::string& file) : file_(file)
+CloudWriter::CloudWriter(std::vector<std::string> files) : files_(std::move(files))
 {
-    if (endsWith(file, ".pcd"))
-        ply_ = false;
-    else if (!endsWith(file, ".ply"))
-        fail(file, "unknown point-cloud extension (use .ply or .pcd)");
-    f_ = std::fopen((file + ".part").c_str(), "wb");
-    if (!f_) fail(file + ".part", std::string("cannot create: ") + std::strerror(errno));
+    if (files_.empty()) throw std::invalid_argument("CloudWriter: no output file");
+    for (const std::string& file : files_)
+        if (!endsWith(file, ".pcd") && !endsWith(file, ".ply"))
+            fail(file, "unknown point-cloud extension (use .ply or .pcd)");
+    part_ = files_.front() + ".part";
+    f_ = std::fopen(part_.c_str(), "wb");
+    if (!f_) fail(part_, std::string("cannot create: ") + std::strerror(errno));
     buf_.reserve(4 * 8192);
 }
 
@@ -46,7 +45,7 @@ CloudWriter::~CloudWriter()
     if (f_)
     {
         std::fclose(f_);
-        std::remove((file_ + ".part").c_str());
+        std::remove(part_.c_str());
     }
 }
 
@@ -57,7 +56,7 @@ void CloudWriter::add(float x, float y, float z, float intensity)
     if (buf_.size() >= 4 * 8192)
     {
         if (std::fwrite(buf_.data(), sizeof(float), buf_.size(), f_) != buf_.size())
-            fail(file_ + ".part", "write error (disk full?)");
+            fail(part_, "write error (disk full?)");
         buf_.clear();
     }
 }
@@ -66,29 +65,31 @@ void CloudWriter::close()
 {
     if (!f_) return;
     if (!buf_.empty() && std::fwrite(buf_.data(), sizeof(float), buf_.size(), f_) != buf_.size())
-        fail(file_ + ".part", "write error (disk full?)");
+        fail(part_, "write error (disk full?)");
     buf_.clear();
-    if (std::fclose(f_) != 0) fail(file_ + ".part", "error closing");
+    if (std::fclose(f_) != 0) fail(part_, "error closing");
     f_ = nullptr;
 
-    std::ofstream out(file_, std::ios::binary | std::ios::trunc);
-    if (!out) fail(file_, "cannot create");
-    if (ply_)
-        out << "ply\nformat binary_little_endian 1.0\ncomment written by hif\nelement vertex "
-            << count_
-            << "\nproperty float x\nproperty float y\nproperty float z\nproperty float "
-               "intensity\nend_header\n";
-    else
-        out << "# .PCD v0.7 - Point Cloud Data file format (written by hif)\nVERSION 0.7\n"
-               "FIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH "
-            << count_ << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << count_
-            << "\nDATA binary\n";
-    std::ifstream body(file_ + ".part", std::ios::binary);
-    if (count_ > 0) out << body.rdbuf();
-    body.close();
-    out.close();
-    if (!out) fail(file_, "write error (disk full?)");
-    std::remove((file_ + ".part").c_str());
+    for (const std::string& file : files_)
+    {
+        std::ofstream out(file, std::ios::binary | std::ios::trunc);
+        if (!out) fail(file, "cannot create");
+        if (endsWith(file, ".ply"))
+            out << "ply\nformat binary_little_endian 1.0\ncomment written by hif\nelement vertex "
+                << count_
+                << "\nproperty float x\nproperty float y\nproperty float z\nproperty float "
+                   "intensity\nend_header\n";
+        else
+            out << "# .PCD v0.7 - Point Cloud Data file format (written by hif)\nVERSION 0.7\n"
+                   "FIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH "
+                << count_ << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << count_
+                << "\nDATA binary\n";
+        std::ifstream body(part_, std::ios::binary);
+        if (count_ > 0) out << body.rdbuf();
+        out.close();
+        if (!out) fail(file, "write error (disk full?)");
+    }
+    std::remove(part_.c_str());
 }
 
 PcdCloud readPcd(const std::string& file)

@@ -15,27 +15,27 @@
 
 namespace hif::apps
 {
-/** Writes x y z intensity (float32 each) to a binary little-endian PLY or a binary PCD file,
- *  chosen by the extension (.ply or .pcd). The point count in the header is filled in by
- *  close(). Throws std::runtime_error naming the file on any I/O failure. */
+/** Writes the same points, x y z intensity (float32 each), to one or more files, each a
+ *  binary little-endian PLY or a binary PCD chosen by its extension (.ply or .pcd). Both
+ *  formats have the same body, so it is written once, to "<first file>.part"; close() writes
+ *  each file's header (which needs the count) and the body. Throws std::runtime_error naming
+ *  the file on any I/O failure. */
 class CloudWriter
 {
 public:
-    explicit CloudWriter(const std::string& file);
+    explicit CloudWriter(std::vector<std::string> files);
     ~CloudWriter();
     CloudWriter(const CloudWriter&) = delete;
     CloudWriter& operator=(const CloudWriter&) = delete;
 
     void add(float x, float y, float z, float intensity);
-    /** Writes the final header; the file is complete only after this. */
+    /** Writes the files; they are complete only after this. */
     void close();
     [[nodiscard]] std::size_t count() const { return count_; }
-    [[nodiscard]] const std::string& file() const { return file_; }
 
 private:
-    void writeHeader();
-    std::string file_;
-    bool ply_ = true;
+    std::vector<std::string> files_;
+    std::string part_;
     std::FILE* f_ = nullptr;
     std::size_t count_ = 0;
     std::vector<float> buf_;
