@@ -352,17 +352,4 @@ int run(Cli& cli)
 }
 }  // namespace
 
-int main(int argc, char** argv)
-{
-    try
-    {
-        Cli cli;
-        cli.cmd.parse(argc, argv);
-        return run(cli);
-    }
-    catch (const std::exception& e)
-    {
-        std::cerr << kTag << " error: " << e.what() << "\n";
-        return 1;
-    }
-}
+int main(int argc, char** argv) { return hif::apps::cliMain<Cli>(kTag.c_str(), argc, argv, run); }

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hif/apps/Labels.h"
+#include "hif/apps/Util.h"
 
 namespace fs = std::filesystem;
 
@@ -139,17 +140,4 @@ int run(Cli& cli)
 }
 }  // namespace
 
-int main(int argc, char** argv)
-{
-    try
-    {
-        Cli cli;
-        cli.cmd.parse(argc, argv);
-        return run(cli);
-    }
-    catch (const std::exception& e)
-    {
-        std::cerr << "[hif-eval] error: " << e.what() << "\n";
-        return 1;
-    }
-}
+int main(int argc, char** argv) { return hif::apps::cliMain<Cli>("[hif-eval]", argc, argv, run); }

@@ -316,15 +316,5 @@ int run(Cli& cli)
 
 int main(int argc, char** argv)
 {
-    try
-    {
-        Cli cli;
-        cli.cmd.parse(argc, argv);
-        return run(cli);
-    }
-    catch (const std::exception& e)
-    {
-        std::cerr << "[hif-synthetic-kitti] error: " << e.what() << "\n";
-        return 1;
-    }
+    return hif::apps::cliMain<Cli>("[hif-synthetic-kitti]", argc, argv, run);
 }

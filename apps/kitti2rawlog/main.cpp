@@ -159,15 +159,5 @@ int run(Cli& cli)
 
 int main(int argc, char** argv)
 {
-    try
-    {
-        Cli cli;
-        cli.cmd.parse(argc, argv);
-        return run(cli);
-    }
-    catch (const std::exception& e)
-    {
-        std::cerr << "[kitti2rawlog] error: " << e.what() << "\n";
-        return 1;
-    }
+    return hif::apps::cliMain<Cli>("[kitti2rawlog]", argc, argv, run);
 }

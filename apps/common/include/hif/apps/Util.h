@@ -8,6 +8,8 @@
 
 #include <chrono>
 #include <cstddef>
+#include <exception>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -50,5 +52,24 @@ void makeDirs(const std::string& dir);
 /** Throws std::runtime_error if `file` exists and `overwrite` is false: nothing the user has
  *  is replaced without being asked. */
 void refuseToOverwrite(const std::string& file, bool overwrite, const std::string& flag);
+
+/** The whole main() of an app: parses the command line into a `Cli` (which holds a TCLAP
+ *  `cmd` with its arguments), calls `run(cli)`, and turns any exception into
+ *  "<tag> error: <what>" on stderr and exit code 1. */
+template <typename Cli, typename Run>
+int cliMain(const char* tag, int argc, char** argv, Run run)
+{
+    try
+    {
+        Cli cli;
+        cli.cmd.parse(argc, argv);
+        return run(cli);
+    }
+    catch (const std::exception& e)
+    {
+        std::cerr << tag << " error: " << e.what() << "\n";
+        return 1;
+    }
+}
 
 }  // namespace hif::apps
