@@ -67,6 +67,22 @@ std::string fresh(const std::string& name)
 
 }  // namespace
 
+TEST(Apps, HelpExitsZeroAndABadFlagStopsTheApp)
+{
+    for (const std::string app : {"kitti2rawlog", "hif-clean", "hif-eval", "hif-synthetic-kitti"})
+    {
+        SCOPED_TRACE(app);
+        const auto help = runApp(app, "--help");
+        EXPECT_EQ(help.code, 0) << help.output;
+        EXPECT_NE(help.output.find("USAGE:"), std::string::npos) << help.output;
+        EXPECT_EQ(help.output.find("error:"), std::string::npos) << "the app ran after --help";
+        const auto bad = runApp(app, "--no-such-flag");
+        EXPECT_NE(bad.code, 0);
+        EXPECT_NE(bad.output.find("PARSE ERROR"), std::string::npos) << bad.output;
+        EXPECT_EQ(bad.output.find("error:"), std::string::npos) << "the app ran: " << bad.output;
+    }
+}
+
 TEST(HifEval, AgreesWithAHandCountedExample)
 {
     const std::string d = fresh("eval_hand");

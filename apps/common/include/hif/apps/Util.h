@@ -55,14 +55,24 @@ void refuseToOverwrite(const std::string& file, bool overwrite, const std::strin
 
 /** The whole main() of an app: parses the command line into a `Cli` (which holds a TCLAP
  *  `cmd` with its arguments), calls `run(cli)`, and turns any exception into
- *  "<tag> error: <what>" on stderr and exit code 1. */
+ *  "<tag> error: <what>" on stderr and exit code 1. MRPT's TCLAP reports a bad command line
+ *  and --help / --version itself and returns false from parse(): then the app does not run,
+ *  and exits with 0 for --help / --version, 1 for a bad command line. */
 template <typename Cli, typename Run>
 int cliMain(const char* tag, int argc, char** argv, Run run)
 {
     try
     {
         Cli cli;
-        cli.cmd.parse(argc, argv);
+        if (!cli.cmd.parse(argc, argv))
+        {
+            for (int i = 1; i < argc; ++i)
+            {
+                const std::string a = argv[i];
+                if (a == "-h" || a == "--help" || a == "--version") return 0;
+            }
+            return 1;
+        }
         return run(cli);
     }
     catch (const std::exception& e)
