@@ -59,21 +59,30 @@ TEST(BayesFilter, Eq5HandNumbers)
     }
 }
 
+namespace
+{
+std::vector<Span> spansOf(const std::vector<int32_t>& cells, int32_t gap, int32_t pad)
+{
+    std::vector<Span> s(cells.size());
+    s.resize(buildSpans(cells.data(), cells.size(), gap, pad, s.data()));
+    return s;
+}
+}  // namespace
+
 TEST(BuildSpans, MergesByGapAndPads)
 {
     const std::vector<int32_t> cells = {0, 1, 2, 5, 6, 20};
-    std::vector<Span> s;
-    buildSpans(cells.data(), cells.size(), 0, 0, s);
+    std::vector<Span> s = spansOf(cells, 0, 0);
     EXPECT_EQ(s, (std::vector<Span>{{0, 3}, {5, 7}, {20, 21}}));
-    buildSpans(cells.data(), cells.size(), 1, 0, s);  // gap of 2 empty cells > 1
+    s = spansOf(cells, 1, 0);  // gap of 2 empty cells > 1
     EXPECT_EQ(s, (std::vector<Span>{{0, 3}, {5, 7}, {20, 21}}));
-    buildSpans(cells.data(), cells.size(), 2, 0, s);  // 3,4 empty: merged
+    s = spansOf(cells, 2, 0);  // 3,4 empty: merged
     EXPECT_EQ(s, (std::vector<Span>{{0, 7}, {20, 21}}));
-    buildSpans(cells.data(), cells.size(), 0, 1, s);  // padding joins [−1,4) and [4,8)
+    s = spansOf(cells, 0, 1);  // padding joins [−1,4) and [4,8)
     EXPECT_EQ(s, (std::vector<Span>{{-1, 8}, {19, 22}}));
     const std::vector<int32_t> dup = {3, 3, 3};
-    buildSpans(dup.data(), dup.size(), 0, 0, s);
-    EXPECT_EQ(s, (std::vector<Span>{{3, 4}}));
+    EXPECT_EQ(spansOf(dup, 0, 0), (std::vector<Span>{{3, 4}}));
+    EXPECT_TRUE(spansOf({}, 0, 0).empty());
 }
 
 TEST(PillarUpdate, Case1SeenAgainIncreases_Eq12)
@@ -230,8 +239,7 @@ TEST(PillarUpdate, IntervalCountStaysBoundedOverThousandsOfScans)
                 for (int c = h; c < h + l; ++c) cells.push_back(c);
             }
             std::sort(cells.begin(), cells.end());
-            std::vector<Span> spans;
-            buildSpans(cells.data(), cells.size(), 0, 0, spans);
+            const std::vector<Span> spans = spansOf(cells, 0, 0);
             updatePillar(g, spans.data(), spans.size(), m, cap, scratch);
             peak = std::max(peak, g.intervals.size());
             for (std::size_t q = 1; q < g.intervals.size(); ++q)

@@ -40,9 +40,12 @@ public:
         std::map<std::pair<int, int>, std::set<int>> cells;
         for (const auto& q : pts)
         {
-            const int m = static_cast<int>(std::floor((q[0] - prm_.origin_x) / prm_.pillar_size));
-            const int n = static_cast<int>(std::floor((q[1] - prm_.origin_y) / prm_.pillar_size));
-            cells[{m, n}].insert(static_cast<int>(std::floor(q[2] / prm_.height_resolution)));
+            const int m =
+                static_cast<int>(std::floor((q[0] - prm_.origin_x) * (1.0 / prm_.pillar_size)));
+            const int n =
+                static_cast<int>(std::floor((q[1] - prm_.origin_y) * (1.0 / prm_.pillar_size)));
+            cells[{m, n}].insert(
+                static_cast<int>(std::floor(q[2] * (1.0 / prm_.height_resolution))));
         }
         const int gap = static_cast<int>(std::lround(prm_.merge_gap / prm_.height_resolution));
         const int pad =

@@ -24,11 +24,11 @@ LogOddsModel LogOddsModel::fromParams(const Params& p)
     return m;
 }
 
-void buildSpans(const int32_t* cells, std::size_t n, int32_t gap_cells, int32_t pad_cells,
-                std::vector<Span>& out)
+std::size_t buildSpans(const int32_t* cells, std::size_t n, int32_t gap_cells, int32_t pad_cells,
+                       Span* out)
 {
-    out.clear();
-    if (n == 0) return;
+    if (n == 0) return 0;
+    std::size_t count = 0;
     // Work in int64 so padding near the int32 limits cannot overflow; spans are clamped back.
     constexpr int64_t kLo = std::numeric_limits<int32_t>::min();
     constexpr int64_t kHi = std::numeric_limits<int32_t>::max();
@@ -36,10 +36,10 @@ void buildSpans(const int32_t* cells, std::size_t n, int32_t gap_cells, int32_t 
     {
         lo = std::max(kLo, lo - pad_cells);
         hi = std::min(kHi, hi + pad_cells);
-        if (!out.empty() && out.back().hi >= lo)
-            out.back().hi = static_cast<int32_t>(std::max<int64_t>(out.back().hi, hi));
+        if (count > 0 && out[count - 1].hi >= lo)
+            out[count - 1].hi = static_cast<int32_t>(std::max<int64_t>(out[count - 1].hi, hi));
         else
-            out.push_back({static_cast<int32_t>(lo), static_cast<int32_t>(hi)});
+            out[count++] = {static_cast<int32_t>(lo), static_cast<int32_t>(hi)};
     };
     int64_t lo = cells[0];
     int64_t last = cells[0];
@@ -55,6 +55,7 @@ void buildSpans(const int32_t* cells, std::size_t n, int32_t gap_cells, int32_t 
         last = c;
     }
     emit(lo, last + 1);
+    return count;
 }
 
 void updatePillar(Pillar& g, const Span* t, std::size_t nt, const LogOddsModel& model,

@@ -5,7 +5,12 @@
  */
 #include "hif/PillarGrid.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -24,6 +29,7 @@ PillarGrid::PillarGrid(const Params& params) : params_(params)
 {
     params_.validate();
     model_ = LogOddsModel::fromParams(params_);
+    static_logodds_ = logit(params_.static_threshold);
 }
 
 void PillarGrid::setParams(const Params& params)
@@ -39,6 +45,32 @@ void PillarGrid::setParams(const Params& params)
             "cannot change once the map holds pillars (clear it first)");
     params_ = params;
     model_ = LogOddsModel::fromParams(params_);
+    static_logodds_ = logit(params_.static_threshold);
+}
+
+void PillarGrid::setThreads(std::size_t threads)
+{
+    if (threads == 0)
+        throw std::invalid_argument("hif::PillarGrid::setThreads: the thread count must be >= 1");
+    threads_ = threads;
+}
+
+template <typename F>
+void PillarGrid::forRanges(std::size_t n, std::size_t grain, F&& f) const
+{
+    if (threads_ <= 1 || n <= grain)
+    {
+        f(std::size_t{0}, n);
+        return;
+    }
+    tbb::task_arena arena(static_cast<int>(threads_));
+    arena.execute(
+        [&]
+        {
+            tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain),
+                              [&](const tbb::blocked_range<std::size_t>& r)
+                              { f(r.begin(), r.end()); });
+        });
 }
 
 std::optional<PillarIndex> PillarGrid::pillarOf(double x, double y) const
@@ -56,74 +88,217 @@ std::optional<int32_t> PillarGrid::heightCellOf(double z) const
 
 InsertStats PillarGrid::insertScan(const PointsView& pts, const Eigen::Isometry3d& T)
 {
-    InsertStats st;
+    bucketScan(pts, T, scan_);
+    buildIntervals(scan_);
+    return mergeScan(scan_);
+}
+
+void PillarGrid::bucketScan(const PointsView& pts, const Eigen::Isometry3d& T, ScanPillars& out,
+                            bool keep_index) const
+{
     const Eigen::Matrix3d R = T.linear();
     const Eigen::Vector3d t = T.translation();
+    const double ox = params_.origin_x, oy = params_.origin_y;
+    const double inv_xy = 1.0 / params_.pillar_size;
+    const double inv_z = 1.0 / params_.height_resolution;
+    out.sensor = t;
+    out.points_in = pts.size;
+    out.top_slope_sq = -std::numeric_limits<double>::infinity();
+    out.tmp_m.resize(pts.size);
+    out.tmp_n.resize(pts.size);
+    out.tmp_z.resize(pts.size);
+    if (keep_index) out.tmp_src.resize(pts.size);
 
-    // 1) transform, quantize (Eq. 1) and key every point; note the top beam's elevation
-    //    (largest z / horizontal range in the sensor frame) for High-Height Preservation.
-    buf_points_.clear();
-    buf_points_.reserve(pts.size);
-    double top_slope = -std::numeric_limits<double>::infinity();
+    // Pass 1: transform, quantize (Eq. 1; as quantize(), without std::optional) and keep the
+    // valid points, with the bounding box of their pillars and the top beam's elevation.
+    constexpr double kMinR2 = kMinRangeForElevation * kMinRangeForElevation;
+    constexpr double kLo = std::numeric_limits<int32_t>::min();
+    constexpr double kHi = std::numeric_limits<int32_t>::max();
+    int32_t m_min = std::numeric_limits<int32_t>::max(),
+            m_max = std::numeric_limits<int32_t>::min();
+    int32_t n_min = m_min, n_max = m_max;
+    double top_num = -1.0, top_den = 0.0;  // top_slope_sq = top_num / top_den
+    std::size_t v = 0;
     for (std::size_t i = 0; i < pts.size; ++i)
     {
-        const Eigen::Vector3d ps(pts.x[i], pts.y[i], pts.z[i]);
-        const Eigen::Vector3d p = R * ps + t;
-        const auto idx = pillarOf(p.x(), p.y());
-        const auto zc = heightCellOf(p.z());
-        if (!idx || !zc)  // NaN/inf fail the range test in quantize()
+        const double sx = pts.x[i], sy = pts.y[i], sz = pts.z[i];
+        const double wx = R(0, 0) * sx + R(0, 1) * sy + R(0, 2) * sz + t.x();
+        const double wy = R(1, 0) * sx + R(1, 1) * sy + R(1, 2) * sz + t.y();
+        const double wz = R(2, 0) * sx + R(2, 1) * sy + R(2, 2) * sz + t.z();
+        const double qm = std::floor((wx - ox) * inv_xy);
+        const double qn = std::floor((wy - oy) * inv_xy);
+        const double qz = std::floor(wz * inv_z);
+        // NaN fails every comparison, so non-finite points are rejected here too.
+        if (!(qm >= kLo && qm <= kHi && qn >= kLo && qn <= kHi && qz >= kLo && qz <= kHi)) continue;
+        const auto m = static_cast<int32_t>(qm), n = static_cast<int32_t>(qn);
+        out.tmp_m[v] = m;
+        out.tmp_n[v] = n;
+        out.tmp_z[v] = static_cast<int32_t>(qz);
+        if (keep_index) out.tmp_src[v] = static_cast<uint32_t>(i);
+        ++v;
+        m_min = std::min(m_min, m);
+        m_max = std::max(m_max, m);
+        n_min = std::min(n_min, n);
+        n_max = std::max(n_max, n);
+        // Largest z / r as z |z| / r^2, compared by cross-multiplication (r^2 > 0).
+        const double r2 = sx * sx + sy * sy;
+        if (r2 > kMinR2 && sz * std::abs(sz) * top_den > top_num * r2)
         {
-            ++st.points_invalid;
-            continue;
+            top_num = sz * std::abs(sz);
+            top_den = r2;
         }
-        const double r2 = ps.x() * ps.x() + ps.y() * ps.y();
-        if (r2 > kMinRangeForElevation * kMinRangeForElevation)
-            top_slope = std::max(top_slope, ps.z() / std::sqrt(r2));
-        buf_points_.push_back({packKey(*idx), *zc});
     }
-    st.points_used = buf_points_.size();
+    if (top_den > 0.0) out.top_slope_sq = top_num / top_den;
+    out.points_invalid = pts.size - v;
+    out.keys.clear();
+    out.offsets.clear();
+    out.cells.resize(v);
+    out.index.resize(keep_index ? v : 0);
+    if (v == 0)
+    {
+        out.offsets.push_back(0);
+        return;
+    }
 
-    // 2) bucket by pillar, heights ascending within each pillar.
-    std::sort(buf_points_.begin(), buf_points_.end(),
-              [](const KeyCell& a, const KeyCell& b)
-              { return a.key < b.key || (a.key == b.key && a.z < b.z); });
+    // Pass 2: group by pillar. Counting sort over the scan's bounding box of pillars when it
+    // is small (always, for a LiDAR scan at 1 m pillars); else a comparison sort.
+    const int64_t width = int64_t{m_max} - m_min + 1, height = int64_t{n_max} - n_min + 1;
+    constexpr int64_t kMaxBins = int64_t{1} << 22;
+    if (width * height <= kMaxBins)
+    {
+        const auto bins = static_cast<std::size_t>(width * height);
+        auto& bin = out.tmp_bin;
+        bin.resize(v);
+        // counts[b] then, after the prefix sum, the first slot of bin b.
+        std::vector<uint32_t>& counts = out.offsets;  // reused as the histogram
+        counts.assign(bins + 1, 0);
+        for (std::size_t k = 0; k < v; ++k)
+        {
+            const auto b = static_cast<uint32_t>(int64_t{out.tmp_m[k] - m_min} * height +
+                                                 (out.tmp_n[k] - n_min));
+            bin[k] = b;
+            ++counts[b];
+        }
+        uint32_t sum = 0;
+        for (std::size_t b = 0; b < bins; ++b)
+        {
+            const uint32_t c = counts[b];
+            counts[b] = sum;
+            if (c > 0)
+                out.keys.push_back(
+                    packKey({static_cast<int32_t>(m_min + static_cast<int64_t>(b) / height),
+                             static_cast<int32_t>(n_min + static_cast<int64_t>(b) % height)}));
+            sum += c;
+        }
+        counts[bins] = sum;
+        for (std::size_t k = 0; k < v; ++k)
+        {
+            const uint32_t slot = counts[bin[k]]++;
+            out.cells[slot] = out.tmp_z[k];
+            if (keep_index) out.index[slot] = out.tmp_src[k];
+        }
+        // counts[b] is now the end of bin b: the non-empty ones give the pillar offsets.
+        std::size_t p = 0;
+        uint32_t prev_end = 0;
+        for (std::size_t b = 0; b < bins; ++b)
+        {
+            const uint32_t end = counts[b];
+            if (end == prev_end) continue;  // empty bin
+            counts[p++] = prev_end;         // p <= b: only slots already read are written
+            prev_end = end;
+        }
+        counts[p] = prev_end;
+        counts.resize(p + 1);
+    }
+    else
+    {
+        auto& order = out.tmp_bin;
+        order.resize(v);
+        for (std::size_t k = 0; k < v; ++k) order[k] = static_cast<uint32_t>(k);
+        auto keyOf = [&](uint32_t k) { return packKey({out.tmp_m[k], out.tmp_n[k]}); };
+        std::sort(order.begin(), order.end(),
+                  [&](uint32_t a, uint32_t b) { return keyOf(a) < keyOf(b); });
+        for (std::size_t k = 0; k < v; ++k)
+        {
+            const uint32_t src = order[k];
+            const uint64_t key = keyOf(src);
+            if (out.keys.empty() || out.keys.back() != key)
+            {
+                out.keys.push_back(key);
+                out.offsets.push_back(static_cast<uint32_t>(k));
+            }
+            out.cells[k] = out.tmp_z[src];
+            if (keep_index) out.index[k] = out.tmp_src[src];
+        }
+        out.offsets.push_back(static_cast<uint32_t>(v));
+    }
+}
 
-    // 3) per pillar: spans of this scan (Eq. 4), then update or create the global pillar.
+void PillarGrid::buildIntervals(ScanPillars& scan) const
+{
+    const std::size_t np = scan.pillarCount();
+    scan.ceilings.resize(np);
+    scan.span_counts.resize(np);
+    scan.spans.resize(scan.pointCount());
     const double res = params_.height_resolution;
     const double beam_slope = std::tan(params_.beam_spacing_deg * M_PI / 180.0);
     const bool need_ceiling = (params_.high_height_preservation || params_.unseen_height_prior) &&
-                              std::isfinite(top_slope);
-    for (std::size_t b = 0; b < buf_points_.size();)
+                              std::isfinite(scan.top_slope_sq);
+    // tan(top beam elevation) from its signed square.
+    const double top_slope =
+        need_ceiling ? std::copysign(std::sqrt(std::abs(scan.top_slope_sq)), scan.top_slope_sq)
+                     : 0.0;
+    const Eigen::Vector3d& t = scan.sensor;
+    forRanges(np, 256,
+              [&](std::size_t p0, std::size_t p1)
+              {
+                  for (std::size_t p = p0; p < p1; ++p)
+                  {
+                      const uint32_t b = scan.offsets[p], e = scan.offsets[p + 1];
+                      int32_t* cells = scan.cells.data() + b;
+                      std::sort(cells, cells + (e - b));
+
+                      // Horizontal distance from the sensor to the pillar's centre.
+                      const PillarIndex idx = unpackKey(scan.keys[p]);
+                      const double cx = params_.origin_x + (idx.m + 0.5) * params_.pillar_size;
+                      const double cy = params_.origin_y + (idx.n + 0.5) * params_.pillar_size;
+                      const double dx = cx - t.x(), dy = cy - t.y();
+                      const double d = std::sqrt(dx * dx + dy * dy);
+                      const double beam_gap = d * beam_slope;  // vertical beam spacing at d
+                      const auto gap_cells = static_cast<int32_t>(
+                          std::floor(std::max(params_.merge_gap, beam_gap) / res + 1e-9));
+                      const auto pad_cells = static_cast<int32_t>(std::ceil(
+                          std::max(params_.interval_padding, 0.5 * beam_gap) / res - 1e-9));
+                      scan.span_counts[p] = static_cast<uint32_t>(
+                          buildSpans(cells, e - b, gap_cells, pad_cells, scan.spans.data() + b));
+
+                      int32_t ceiling = kAllHeights;
+                      if (need_ceiling)
+                      {
+                          const double top = (t.z() + d * top_slope) / res;
+                          if (top < static_cast<double>(kAllHeights))
+                              ceiling = static_cast<int32_t>(std::max<double>(
+                                  std::ceil(top), std::numeric_limits<int32_t>::min() + 1.0));
+                      }
+                      scan.ceilings[p] = ceiling;
+                  }
+              });
+}
+
+InsertStats PillarGrid::mergeScan(const ScanPillars& scan)
+{
+    InsertStats st;
+    st.points_used = scan.pointCount();
+    st.points_invalid = scan.points_invalid;
+    const std::size_t np = scan.pillarCount();
+
+    // Find or create every pillar first (serial: the table may grow); reserving up front
+    // keeps the pointers valid while the pillars are updated.
+    pillars_.reserve(pillars_.size() + np);
+    targets_.resize(np);
+    for (std::size_t p = 0; p < np; ++p)
     {
-        const uint64_t key = buf_points_[b].key;
-        buf_cells_.clear();
-        std::size_t e = b;
-        for (; e < buf_points_.size() && buf_points_[e].key == key; ++e)
-            buf_cells_.push_back(buf_points_[e].z);
-        b = e;
-
-        // Horizontal distance from the sensor to the pillar's centre.
-        const PillarIndex idx = unpackKey(key);
-        const double cx = params_.origin_x + (idx.m + 0.5) * params_.pillar_size;
-        const double cy = params_.origin_y + (idx.n + 0.5) * params_.pillar_size;
-        const double d = std::hypot(cx - t.x(), cy - t.y());
-        const double beam_gap = d * beam_slope;  // vertical distance between beams at d
-        const auto gap_cells =
-            static_cast<int32_t>(std::floor(std::max(params_.merge_gap, beam_gap) / res + 1e-9));
-        const auto pad_cells = static_cast<int32_t>(
-            std::ceil(std::max(params_.interval_padding, 0.5 * beam_gap) / res - 1e-9));
-        buildSpans(buf_cells_.data(), buf_cells_.size(), gap_cells, pad_cells, buf_spans_);
-
-        int32_t ceiling = kAllHeights;
-        if (need_ceiling)
-        {
-            const double top = (t.z() + d * top_slope) / res;
-            if (top < static_cast<double>(kAllHeights))
-                ceiling = static_cast<int32_t>(
-                    std::max<double>(std::ceil(top), std::numeric_limits<int32_t>::min() + 1.0));
-        }
-
-        auto [it, inserted] = pillars_.try_emplace(key);
+        auto [it, inserted] = pillars_.try_emplace(scan.keys[p]);
         if (inserted)
         {
             // A new pillar is an empty one with the prior p_empty: the general update then
@@ -131,12 +306,37 @@ InsertStats PillarGrid::insertScan(const PointsView& pts, const Eigen::Isometry3
             it->second.logodds_empty = model_.clamp(model_.empty_init);
             ++st.pillars_created;
         }
-        else
-            ++st.pillars_updated;
-        updatePillar(it->second, buf_spans_.data(), buf_spans_.size(), model_,
-                     params_.max_intervals_per_pillar, buf_intervals_, ceiling);
+        targets_[p] = &it->second;
     }
+    st.pillars_updated = np - st.pillars_created;
+
+    const std::size_t cap = params_.max_intervals_per_pillar;
+    auto update = [&](std::size_t p0, std::size_t p1, std::vector<Interval>& scratch)
+    {
+        for (std::size_t p = p0; p < p1; ++p)
+            updatePillar(*targets_[p], scan.spans.data() + scan.offsets[p], scan.span_counts[p],
+                         model_, cap, scratch, scan.ceilings[p]);
+    };
+    if (threads_ <= 1)
+        update(0, np, scratch_);
+    else
+        forRanges(np, 256,
+                  [&](std::size_t p0, std::size_t p1)
+                  {
+                      std::vector<Interval> scratch;
+                      update(p0, p1, scratch);
+                  });
     return st;
+}
+
+double PillarGrid::logOddsAt(double x, double y, double z) const
+{
+    const auto idx = pillarOf(x, y);
+    const auto zc = heightCellOf(z);
+    const Pillar* p = idx && zc ? findPillar(*idx) : nullptr;
+    if (!p) return logit(params_.p_empty_init);
+    if (const Interval* iv = findInterval(*p, *zc)) return iv->logodds;
+    return p->logodds_empty;
 }
 
 double PillarGrid::staticProbability(double x, double y, double z) const
@@ -152,29 +352,57 @@ double PillarGrid::staticProbability(double x, double y, double z) const
 
 bool PillarGrid::isStatic(double x, double y, double z) const
 {
-    return staticProbability(x, y, z) >= params_.static_threshold;
+    return logOddsAt(x, y, z) >= static_logodds_;
 }
 
 ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& is_dynamic,
                                    const Eigen::Isometry3d& T) const
 {
+    thread_local ScanPillars scan;  // reused by later calls on this thread
+    bucketScan(pts, T, scan, true);
+    constexpr uint8_t kUnset = 2;
+    is_dynamic.assign(pts.size, kUnset);
+
+    const bool prior_static = logit(params_.p_empty_init) >= static_logodds_;
+    std::atomic<std::size_t> n_static{0};
+    forRanges(scan.pillarCount(), 256,
+              [&](std::size_t p0, std::size_t p1)
+              {
+                  std::size_t local_static = 0;
+                  for (std::size_t p = p0; p < p1; ++p)
+                  {
+                      const uint32_t b = scan.offsets[p], e = scan.offsets[p + 1];
+                      const Pillar* pil = findPillar(unpackKey(scan.keys[p]));
+                      for (uint32_t k = b; k < e; ++k)
+                      {
+                          bool stat = prior_static;
+                          if (pil)
+                          {
+                              const Interval* iv = findInterval(*pil, scan.cells[k]);
+                              stat = (iv ? iv->logodds : pil->logodds_empty) >= static_logodds_;
+                          }
+                          is_dynamic[scan.index[k]] = stat ? 0 : 1;
+                          local_static += stat;
+                      }
+                  }
+                  n_static += local_static;
+              });
     ClassifyStats st;
-    is_dynamic.assign(pts.size, 1);
-    const Eigen::Matrix3d R = T.linear();
-    const Eigen::Vector3d t = T.translation();
-    for (std::size_t i = 0; i < pts.size; ++i)
-    {
-        const Eigen::Vector3d p = R * Eigen::Vector3d(pts.x[i], pts.y[i], pts.z[i]) + t;
-        if (!p.allFinite())
+    st.static_points = n_static;
+    // Points that bucketScan() skipped: non-finite ones are invalid (dynamic); finite ones
+    // beyond the int32 index range lie in unknown space, which has the prior.
+    if (scan.points_invalid > 0)
+        for (std::size_t i = 0; i < pts.size; ++i)
         {
-            ++st.invalid_points;
-            ++st.dynamic_points;
-            continue;
+            if (is_dynamic[i] != kUnset) continue;
+            const bool finite =
+                std::isfinite(pts.x[i]) && std::isfinite(pts.y[i]) && std::isfinite(pts.z[i]);
+            st.invalid_points += !finite;
+            const bool stat = finite && prior_static;
+            is_dynamic[i] = stat ? 0 : 1;
+            st.static_points += stat;
         }
-        const bool stat = isStatic(p.x(), p.y(), p.z());
-        is_dynamic[i] = stat ? 0 : 1;
-        ++(stat ? st.static_points : st.dynamic_points);
-    }
+    st.dynamic_points = pts.size - st.static_points;
     return st;
 }
 
@@ -190,6 +418,15 @@ std::size_t PillarGrid::maxIntervalsInAPillar() const
     std::size_t n = 0;
     for (const auto& kv : pillars_) n = std::max(n, kv.second.intervals.size());
     return n;
+}
+
+std::size_t PillarGrid::memoryBytes() const
+{
+    // absl's flat table: one slot and one control byte per bucket (plus a group of control
+    // bytes); the intervals live in each pillar's own vector.
+    std::size_t bytes = pillars_.capacity() * (sizeof(std::pair<const uint64_t, Pillar>) + 1) + 16;
+    for (const auto& kv : pillars_) bytes += kv.second.intervals.capacity() * sizeof(Interval);
+    return bytes;
 }
 
 const Pillar* PillarGrid::findPillar(PillarIndex idx) const

@@ -86,9 +86,11 @@ struct LogOddsModel
 
 /** Heights (already as cells, sorted ascending) of one pillar in one scan merged into spans
  *  (Eq. 4): consecutive cells whose empty gap is at most `gap_cells` share a span; each span is
- *  widened by `pad_cells` on both sides, and spans that then touch or overlap are joined. */
-void buildSpans(const int32_t* sorted_cells, std::size_t n, int32_t gap_cells, int32_t pad_cells,
-                std::vector<Span>& out);
+ *  widened by `pad_cells` on both sides, and spans that then touch or overlap are joined.
+ *  Writes the spans to `out`, which must have room for `n` (there are never more), and
+ *  returns their count. */
+std::size_t buildSpans(const int32_t* sorted_cells, std::size_t n, int32_t gap_cells,
+                       int32_t pad_cells, Span* out);
 
 /** Updates global pillar `g` with the spans `t` (sorted, disjoint, non-empty) seen by one
  *  scan: elementary intervals from the union of endpoints (Eq. 9-10), the three overlap cases

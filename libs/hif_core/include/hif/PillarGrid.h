@@ -10,6 +10,8 @@
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
+#include <optional>
 #include <vector>
 
 #include "hif/Params.h"
@@ -28,7 +30,7 @@ struct PointsView
     std::size_t size = 0;
 };
 
-/** What one insertScan() did. */
+/** What one insertScan() (or mergeScan()) did. */
 struct InsertStats
 {
     std::size_t points_used = 0;      ///< points that updated the map
@@ -45,8 +47,44 @@ struct ClassifyStats
     std::size_t invalid_points = 0;  ///< non-finite: reported dynamic (not part of the map)
 };
 
+/** One scan turned into the map's own structure: the pillars it hits, each with the height
+ *  cells of its points and, after PillarGrid::buildIntervals(), its spans h^t (Eq. 4). The
+ *  three steps of an insertion (bucketScan, buildIntervals, mergeScan) communicate through it;
+ *  reusing one object between scans avoids allocation in steady state. */
+struct ScanPillars
+{
+    /** @name Per pillar hit by the scan (bucket order)
+     *  @{ */
+    std::vector<uint64_t> keys;         ///< packKey() of the pillar
+    std::vector<uint32_t> offsets;      ///< pillar p owns items [offsets[p], offsets[p+1])
+    std::vector<int32_t> ceilings;      ///< first cell above what the scan could see (kAllHeights)
+    std::vector<uint32_t> span_counts;  ///< pillar p's spans: spans[offsets[p]] onwards
+    /** @} */
+
+    /** @name Per valid point, grouped by pillar
+     *  @{ */
+    std::vector<int32_t> cells;   ///< height cell; ascending within a pillar after buildIntervals
+    std::vector<uint32_t> index;  ///< input index of cells[k] (filled for classification only)
+    std::vector<Span> spans;      ///< at most one span per point, so pillar p's fit at offsets[p]
+    /** @} */
+
+    Eigen::Vector3d sensor = Eigen::Vector3d::Zero();  ///< sensor position, world frame
+    /** Top beam's elevation as the largest z * |z| / (x^2 + y^2) of the points farther than
+     *  2 m horizontally (sensor frame; monotone in z / range, no square root); -inf if none. */
+    double top_slope_sq = -std::numeric_limits<double>::infinity();
+    std::size_t points_in = 0;
+    std::size_t points_invalid = 0;
+
+    [[nodiscard]] std::size_t pillarCount() const { return keys.size(); }
+    [[nodiscard]] std::size_t pointCount() const { return cells.size(); }
+
+    /** Scratch of bucketScan(), kept to be reused. */
+    std::vector<int32_t> tmp_m, tmp_n, tmp_z;
+    std::vector<uint32_t> tmp_src, tmp_bin;
+};
+
 /** The global pillar dictionary G = {H_mn : P_mn} of the paper, with its update and queries.
- *  Copyable; not thread-safe for concurrent insertScan() calls. */
+ *  Copyable. Concurrent const calls (queries, classify) are safe; insertion is not. */
 class PillarGrid
 {
 public:
@@ -55,19 +93,36 @@ public:
 
     /** Integrates one scan. `points` are in the sensor frame, `sensor_to_world` places them in
      *  the world frame (the frame of the grid). Every pillar that receives at least one point
-     *  is updated (Eq. 8-18) or created; other pillars are untouched. */
+     *  is updated (Eq. 8-18) or created; other pillars are untouched. The same as
+     *  bucketScan(), buildIntervals(), mergeScan() in a row. */
     InsertStats insertScan(const PointsView& points, const Eigen::Isometry3d& sensor_to_world =
                                                          Eigen::Isometry3d::Identity());
+
+    /** @name The three steps of insertScan(), public so that each can be timed and reused
+     *  @{ */
+    /** Step 1: transforms and quantizes every point (Eq. 1), skips invalid ones, and groups
+     *  them by pillar in one counting-sort pass (a comparison sort only when the scan spans
+     *  more than 2^22 pillars). With `keep_index`, out.index gets each point's input index. */
+    void bucketScan(const PointsView& points, const Eigen::Isometry3d& sensor_to_world,
+                    ScanPillars& out, bool keep_index = false) const;
+    /** Step 2: sorts each pillar's height cells and builds its spans (Eq. 4, with the
+     *  range-adaptive gap and padding) and its field-of-view ceiling. */
+    void buildIntervals(ScanPillars& scan) const;
+    /** Step 3: the Bayes update of every pillar of the scan (Eq. 8-18), or its creation. */
+    InsertStats mergeScan(const ScanPillars& scan);
+    /** @} */
 
     /** P(static) at a world point: that of the interval containing it; else the pillar's
      *  p_empty when the pillar exists; else Params::p_empty_init (nothing known). */
     [[nodiscard]] double staticProbability(double x, double y, double z) const;
 
-    /** staticProbability(x, y, z) >= Params::static_threshold. */
+    /** True when the log-odds of staticProbability(x, y, z) is at least
+     *  logit(Params::static_threshold) (that is, the probability is at least the threshold). */
     [[nodiscard]] bool isStatic(double x, double y, double z) const;
 
     /** Classifies every point (sensor frame, placed by `sensor_to_world`): is_dynamic[i] = 1
-     *  unless point i is static. `is_dynamic` is resized to points.size. */
+     *  unless point i is static. `is_dynamic` is resized to points.size. Points are grouped by
+     *  pillar first, so each pillar is looked up once. */
     ClassifyStats classify(
         const PointsView& points, std::vector<uint8_t>& is_dynamic,
         const Eigen::Isometry3d& sensor_to_world = Eigen::Isometry3d::Identity()) const;
@@ -77,10 +132,19 @@ public:
      *  is invalid, or changes the grid geometry (pillar_size, origin_x, origin_y,
      *  height_resolution) while the grid is not empty. */
     void setParams(const Params& params);
+
+    /** Threads used by insertion and classification (default 1). Work is split by pillar,
+     *  and pillars are independent, so every thread count gives the same map bit for bit. */
+    void setThreads(std::size_t threads);
+    [[nodiscard]] std::size_t threads() const { return threads_; }
+
     [[nodiscard]] bool empty() const { return pillars_.empty(); }
     [[nodiscard]] std::size_t pillarCount() const { return pillars_.size(); }
     [[nodiscard]] std::size_t intervalCount() const;
     [[nodiscard]] std::size_t maxIntervalsInAPillar() const;
+    /** Heap memory held by the map's content: the hash table's slots and control bytes, and
+     *  every pillar's interval storage (capacity). Excludes the reusable scan buffers. */
+    [[nodiscard]] std::size_t memoryBytes() const;
     void clear() { pillars_.clear(); }
 
     /** Pillar containing world (x, y); nullopt if the index does not fit in int32. */
@@ -97,24 +161,28 @@ public:
      *  pillar breaks the invariant documented on Pillar or exceeds the interval bound. */
     void setPillar(PillarIndex idx, Pillar pillar);
 
-    /** Same parameters and same pillars. */
+    /** Same parameters and same pillars (the thread count is not part of the map). */
     friend bool operator==(const PillarGrid& a, const PillarGrid& b);
 
 private:
     Params params_;
     LogOddsModel model_;
+    double static_logodds_ = 0.0;  ///< logit(static_threshold)
     absl::flat_hash_map<uint64_t, Pillar, PackedKeyHash> pillars_;
+    std::size_t threads_ = 1;
 
-    struct KeyCell
-    {
-        uint64_t key;
-        int32_t z;
-    };
     // Reused between scans so that insertion does not allocate in steady state.
-    std::vector<KeyCell> buf_points_;
-    std::vector<int32_t> buf_cells_;
-    std::vector<Span> buf_spans_;
-    std::vector<Interval> buf_intervals_;
+    ScanPillars scan_;
+    std::vector<Pillar*> targets_;
+    std::vector<Interval> scratch_;
+
+    /** Log-odds of P(static) at a world point (logit(p_empty_init) where nothing is known). */
+    [[nodiscard]] double logOddsAt(double x, double y, double z) const;
+
+    /** Calls f(begin, end) over [0, n) in chunks: on this thread when threads_ == 1, else in
+     *  parallel (TBB) with at most threads_ threads. */
+    template <typename F>
+    void forRanges(std::size_t n, std::size_t grain, F&& f) const;
 };
 
 }  // namespace hif

@@ -67,11 +67,13 @@ struct PackedKeyHash
     }
 };
 
-/** Eq. 1: m = floor((x - x_o) / dx). Returns nullopt when the result does not fit in int32
- *  (or the input is not finite), so callers can count and skip such points. */
+/** Eq. 1: m = floor((x - x_o) / dx), computed as floor((x - x_o) * (1 / dx)) everywhere in
+ *  hif (insertion, queries, classification), so that all agree bit for bit. Returns nullopt when
+ * the result does not fit in int32 (or the input is not finite), so callers can count and skip such
+ * points. */
 [[nodiscard]] inline std::optional<int32_t> quantize(double v, double origin, double size)
 {
-    const double q = std::floor((v - origin) / size);
+    const double q = std::floor((v - origin) * (1.0 / size));
     if (!(q >= static_cast<double>(std::numeric_limits<int32_t>::min()) &&
           q <= static_cast<double>(std::numeric_limits<int32_t>::max())))
         return std::nullopt;

@@ -1,0 +1,180 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   bench_hif.cpp
+ * @brief  Speed of HIF on real KITTI scans (sequence 08 by default): the lower-bound pass,
+ *         insertion (the map growing scan by scan), classification, and the 40-scan offline run.
+ */
+#include <benchmark/benchmark.h>
+#include <mrpt/maps/CPointsMapXYZI.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "hif/PillarGrid.h"
+#include "hif/apps/KittiSequence.h"
+
+namespace
+{
+/** The scans of one sequence, in memory (sensor frame), with their poses. */
+struct Scans
+{
+    std::vector<mrpt::maps::CPointsMapXYZI> clouds;
+    std::vector<Eigen::Isometry3d> poses;
+    std::string error;  // why the sequence could not be loaded
+
+    [[nodiscard]] std::size_t size() const { return clouds.size(); }
+    [[nodiscard]] hif::PointsView view(std::size_t i) const
+    {
+        const auto& c = clouds[i];
+        return {c.getPointsBufferRef_x().data(), c.getPointsBufferRef_y().data(),
+                c.getPointsBufferRef_z().data(), c.size()};
+    }
+};
+
+std::string sequenceDir()
+{
+    if (const char* s = std::getenv("HIF_BENCH_SEQUENCE")) return s;
+    const char* root = std::getenv("HIF_KITTI_DIR");
+    return std::string(root ? root : HIF_DEFAULT_KITTI_DIR) + "/sequences/08";
+}
+
+const Scans& scans()
+{
+    static const Scans s = []
+    {
+        Scans r;
+        try
+        {
+            const hif::apps::KittiSequence seq(sequenceDir());
+            r.clouds.resize(seq.size());
+            for (std::size_t i = 0; i < seq.size(); ++i)
+            {
+                if (!r.clouds[i].loadFromKittiVelodyneFile(seq.scanFile(i)))
+                    throw std::runtime_error("cannot read " + seq.scanFile(i));
+                r.poses.push_back(seq.pose(i));
+            }
+        }
+        catch (const std::exception& e)
+        {
+            r.clouds.clear();
+            r.error = e.what();
+        }
+        return r;
+    }();
+    return s;
+}
+
+/** Skips the benchmark with the reason when the scans are missing. */
+bool haveScans(benchmark::State& state)
+{
+    if (scans().size() > 0) return true;
+    state.SkipWithError(("KITTI scans not available: " + scans().error).c_str());
+    return false;
+}
+
+/** The grid after inserting every scan. */
+const hif::PillarGrid& fullMap()
+{
+    static const hif::PillarGrid g = []
+    {
+        hif::PillarGrid m;
+        for (std::size_t i = 0; i < scans().size(); ++i)
+            m.insertScan(scans().view(i), scans().poses[i]);
+        return m;
+    }();
+    return g;
+}
+
+/** Lower bound: one pass that reads every point of the scan, transforms it to the world frame
+ *  and computes its pillar key; no bucketing, no map. */
+void BM_LowerBound(benchmark::State& state)
+{
+    if (!haveScans(state)) return;
+    const hif::Params prm;
+    std::vector<uint64_t> keys;
+    std::size_t k = 0, points = 0;
+    for (auto _ : state)
+    {
+        const auto v = scans().view(k);
+        const Eigen::Isometry3d& T = scans().poses[k];
+        const Eigen::Matrix3f R = T.linear().cast<float>();
+        const Eigen::Vector3f t = T.translation().cast<float>();
+        keys.resize(v.size);
+        for (std::size_t i = 0; i < v.size; ++i)
+        {
+            const Eigen::Vector3f p = R * Eigen::Vector3f(v.x[i], v.y[i], v.z[i]) + t;
+            const auto m =
+                static_cast<int32_t>(std::floor((p.x() - prm.origin_x) / prm.pillar_size));
+            const auto n =
+                static_cast<int32_t>(std::floor((p.y() - prm.origin_y) / prm.pillar_size));
+            keys[i] = hif::packKey({m, n});
+        }
+        benchmark::DoNotOptimize(keys.data());
+        benchmark::ClobberMemory();
+        points += v.size;
+        k = (k + 1) % scans().size();
+    }
+    state.counters["points/scan"] = double(points) / double(state.iterations());
+}
+BENCHMARK(BM_LowerBound)->Unit(benchmark::kMillisecond);
+
+/** Insertion of the scans in sequence, the map growing; the map restarts empty after the last
+ *  scan (not timed). */
+void BM_Insert(benchmark::State& state)
+{
+    if (!haveScans(state)) return;
+    hif::PillarGrid g;
+    std::size_t k = 0;
+    for (auto _ : state)
+    {
+        benchmark::DoNotOptimize(g.insertScan(scans().view(k), scans().poses[k]));
+        if (++k == scans().size())
+        {
+            state.PauseTiming();
+            k = 0;
+            g.clear();
+            state.ResumeTiming();
+        }
+    }
+}
+BENCHMARK(BM_Insert)->Unit(benchmark::kMillisecond);
+
+/** Classification of one scan's points against the map of all scans. */
+void BM_Classify(benchmark::State& state)
+{
+    if (!haveScans(state)) return;
+    const hif::PillarGrid& g = fullMap();
+    std::vector<uint8_t> dyn;
+    std::size_t k = 0;
+    for (auto _ : state)
+    {
+        benchmark::DoNotOptimize(g.classify(scans().view(k), dyn, scans().poses[k]));
+        k = (k + 1) % scans().size();
+    }
+}
+BENCHMARK(BM_Classify)->Unit(benchmark::kMillisecond);
+
+/** The offline run in memory: insert every scan, then classify every point. */
+void BM_OfflineRun(benchmark::State& state)
+{
+    if (!haveScans(state)) return;
+    std::vector<uint8_t> dyn;
+    for (auto _ : state)
+    {
+        hif::PillarGrid g;
+        for (std::size_t i = 0; i < scans().size(); ++i)
+            g.insertScan(scans().view(i), scans().poses[i]);
+        for (std::size_t i = 0; i < scans().size(); ++i)
+            g.classify(scans().view(i), dyn, scans().poses[i]);
+        benchmark::DoNotOptimize(dyn.data());
+    }
+    state.counters["scans"] = double(scans().size());
+}
+BENCHMARK(BM_OfflineRun)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
