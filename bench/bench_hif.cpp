@@ -122,11 +122,12 @@ void BM_LowerBound(benchmark::State& state)
 BENCHMARK(BM_LowerBound)->Unit(benchmark::kMillisecond);
 
 /** Insertion of the scans in sequence, the map growing; the map restarts empty after the last
- *  scan (not timed). */
+ *  scan (not timed). Argument: threads. */
 void BM_Insert(benchmark::State& state)
 {
     if (!haveScans(state)) return;
     hif::PillarGrid g;
+    g.setThreads(static_cast<std::size_t>(state.range(0)));
     std::size_t k = 0;
     for (auto _ : state)
     {
@@ -140,13 +141,62 @@ void BM_Insert(benchmark::State& state)
         }
     }
 }
-BENCHMARK(BM_Insert)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Insert)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+/** The steps of one insertion, each timed alone on the same scans and the same growing map:
+ *  0 = quantization and bucketing, 1 = interval construction (sort heights, spans), 2 = merge
+ *  into the map (find or create pillars, Bayes update). */
+void BM_InsertStep(benchmark::State& state)
+{
+    if (!haveScans(state)) return;
+    const auto step = state.range(0);
+    hif::PillarGrid g;
+    hif::ScanPillars sp;
+    std::size_t k = 0, pillars = 0;
+    for (auto _ : state)
+    {
+        const auto v = scans().view(k);
+        const auto& T = scans().poses[k];
+        if (step == 0)
+            g.bucketScan(v, T, sp);
+        else
+        {
+            state.PauseTiming();
+            g.bucketScan(v, T, sp);
+            if (step == 2) g.buildIntervals(sp);
+            state.ResumeTiming();
+            if (step == 1) g.buildIntervals(sp);
+        }
+        // Keep the map growing as in BM_Insert (not timed for steps 0 and 1).
+        if (step == 2)
+            g.mergeScan(sp);
+        else
+        {
+            state.PauseTiming();
+            if (step == 0) g.buildIntervals(sp);
+            g.mergeScan(sp);
+            state.ResumeTiming();
+        }
+        benchmark::DoNotOptimize(sp.cells.data());
+        pillars += sp.pillarCount();
+        if (++k == scans().size())
+        {
+            state.PauseTiming();
+            k = 0;
+            g.clear();
+            state.ResumeTiming();
+        }
+    }
+    state.counters["pillars/scan"] = double(pillars) / double(state.iterations());
+}
+BENCHMARK(BM_InsertStep)->ArgName("step")->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 /** Classification of one scan's points against the map of all scans. */
 void BM_Classify(benchmark::State& state)
 {
     if (!haveScans(state)) return;
-    const hif::PillarGrid& g = fullMap();
+    hif::PillarGrid g = fullMap();
+    g.setThreads(static_cast<std::size_t>(state.range(0)));
     std::vector<uint8_t> dyn;
     std::size_t k = 0;
     for (auto _ : state)
@@ -155,7 +205,7 @@ void BM_Classify(benchmark::State& state)
         k = (k + 1) % scans().size();
     }
 }
-BENCHMARK(BM_Classify)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Classify)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 /** The offline run in memory: insert every scan, then classify every point. */
 void BM_OfflineRun(benchmark::State& state)
@@ -165,6 +215,7 @@ void BM_OfflineRun(benchmark::State& state)
     for (auto _ : state)
     {
         hif::PillarGrid g;
+        g.setThreads(static_cast<std::size_t>(state.range(0)));
         for (std::size_t i = 0; i < scans().size(); ++i)
             g.insertScan(scans().view(i), scans().poses[i]);
         for (std::size_t i = 0; i < scans().size(); ++i)
@@ -173,7 +224,7 @@ void BM_OfflineRun(benchmark::State& state)
     }
     state.counters["scans"] = double(scans().size());
 }
-BENCHMARK(BM_OfflineRun)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OfflineRun)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

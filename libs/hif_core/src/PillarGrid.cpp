@@ -23,6 +23,63 @@ namespace
 // Points closer than this (horizontally) to the sensor are ignored when measuring the top
 // beam's elevation: there, range noise makes z / range unreliable.
 constexpr double kMinRangeForElevation = 2.0;
+
+/** floor(v) for v >= -2^31, saturated at INT32_MAX (a gap or padding wider than any map). */
+int32_t floorCells(double v)
+{
+    int32_t c = std::numeric_limits<int32_t>::max();
+    return floorToInt32(v, c) ? c : std::numeric_limits<int32_t>::max();
+}
+
+/** ceil(v) for v > -1, saturated at INT32_MAX. */
+int32_t ceilCells(double v)
+{
+    int32_t c = 0;
+    return floorToInt32(-v, c) && c > std::numeric_limits<int32_t>::min()
+               ? -c
+               : std::numeric_limits<int32_t>::max();
+}
+
+/** Sorts cells[0, n) ascending and removes duplicates in place; returns the distinct count.
+ *  Pillars near the sensor hold hundreds of points in a few height cells: for those, a bitmap
+ *  over the pillar's height range is O(n + range / 64) instead of a comparison sort. */
+std::size_t sortDistinct(int32_t* cells, std::size_t n)
+{
+    constexpr std::size_t kSmall = 24;         // below this, insertion sort is fastest
+    constexpr int64_t kBitmapCells = 64 * 64;  // bitmap of at most 64 words on the stack
+    if (n > kSmall)
+    {
+        const auto [lo_it, hi_it] = std::minmax_element(cells, cells + n);
+        const int64_t lo = *lo_it, range = int64_t{*hi_it} - lo + 1;
+        if (range <= kBitmapCells)
+        {
+            uint64_t bits[kBitmapCells / 64] = {};
+            for (std::size_t k = 0; k < n; ++k)
+            {
+                const auto o = static_cast<uint64_t>(cells[k] - lo);
+                bits[o >> 6] |= uint64_t{1} << (o & 63);
+            }
+            std::size_t m = 0;
+            const auto words = static_cast<std::size_t>((range + 63) / 64);
+            for (std::size_t w = 0; w < words; ++w)
+                for (uint64_t b = bits[w]; b != 0; b &= b - 1)
+                    cells[m++] = static_cast<int32_t>(
+                        lo +
+                        static_cast<int64_t>(w * 64 + static_cast<unsigned>(__builtin_ctzll(b))));
+            return m;
+        }
+        std::sort(cells, cells + n);
+    }
+    else
+        for (std::size_t k = 1; k < n; ++k)  // insertion sort
+        {
+            const int32_t c = cells[k];
+            std::size_t j = k;
+            for (; j > 0 && cells[j - 1] > c; --j) cells[j] = cells[j - 1];
+            cells[j] = c;
+        }
+    return static_cast<std::size_t>(std::unique(cells, cells + n) - cells);
+}
 }  // namespace
 
 PillarGrid::PillarGrid(const Params& params) : params_(params)
@@ -48,11 +105,18 @@ void PillarGrid::setParams(const Params& params)
     static_logodds_ = logit(params_.static_threshold);
 }
 
+struct PillarGrid::Arena
+{
+    explicit Arena(std::size_t threads) : arena(static_cast<int>(threads)) {}
+    tbb::task_arena arena;
+};
+
 void PillarGrid::setThreads(std::size_t threads)
 {
     if (threads == 0)
         throw std::invalid_argument("hif::PillarGrid::setThreads: the thread count must be >= 1");
     threads_ = threads;
+    arena_ = threads > 1 ? std::make_shared<Arena>(threads) : nullptr;
 }
 
 template <typename F>
@@ -63,8 +127,7 @@ void PillarGrid::forRanges(std::size_t n, std::size_t grain, F&& f) const
         f(std::size_t{0}, n);
         return;
     }
-    tbb::task_arena arena(static_cast<int>(threads_));
-    arena.execute(
+    arena_->arena.execute(
         [&]
         {
             tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain),
@@ -112,8 +175,6 @@ void PillarGrid::bucketScan(const PointsView& pts, const Eigen::Isometry3d& T, S
     // Pass 1: transform, quantize (Eq. 1; as quantize(), without std::optional) and keep the
     // valid points, with the bounding box of their pillars and the top beam's elevation.
     constexpr double kMinR2 = kMinRangeForElevation * kMinRangeForElevation;
-    constexpr double kLo = std::numeric_limits<int32_t>::min();
-    constexpr double kHi = std::numeric_limits<int32_t>::max();
     int32_t m_min = std::numeric_limits<int32_t>::max(),
             m_max = std::numeric_limits<int32_t>::min();
     int32_t n_min = m_min, n_max = m_max;
@@ -125,15 +186,14 @@ void PillarGrid::bucketScan(const PointsView& pts, const Eigen::Isometry3d& T, S
         const double wx = R(0, 0) * sx + R(0, 1) * sy + R(0, 2) * sz + t.x();
         const double wy = R(1, 0) * sx + R(1, 1) * sy + R(1, 2) * sz + t.y();
         const double wz = R(2, 0) * sx + R(2, 1) * sy + R(2, 2) * sz + t.z();
-        const double qm = std::floor((wx - ox) * inv_xy);
-        const double qn = std::floor((wy - oy) * inv_xy);
-        const double qz = std::floor(wz * inv_z);
-        // NaN fails every comparison, so non-finite points are rejected here too.
-        if (!(qm >= kLo && qm <= kHi && qn >= kLo && qn <= kHi && qz >= kLo && qz <= kHi)) continue;
-        const auto m = static_cast<int32_t>(qm), n = static_cast<int32_t>(qn);
+        int32_t m = 0, n = 0, zc = 0;
+        // Non-finite points fail here too.
+        if (!floorToInt32((wx - ox) * inv_xy, m) || !floorToInt32((wy - oy) * inv_xy, n) ||
+            !floorToInt32(wz * inv_z, zc))
+            continue;
         out.tmp_m[v] = m;
         out.tmp_n[v] = n;
-        out.tmp_z[v] = static_cast<int32_t>(qz);
+        out.tmp_z[v] = zc;
         if (keep_index) out.tmp_src[v] = static_cast<uint32_t>(i);
         ++v;
         m_min = std::min(m_min, m);
@@ -241,6 +301,7 @@ void PillarGrid::buildIntervals(ScanPillars& scan) const
     scan.span_counts.resize(np);
     scan.spans.resize(scan.pointCount());
     const double res = params_.height_resolution;
+    const double inv_res = 1.0 / res;
     const double beam_slope = std::tan(params_.beam_spacing_deg * M_PI / 180.0);
     const bool need_ceiling = (params_.high_height_preservation || params_.unseen_height_prior) &&
                               std::isfinite(scan.top_slope_sq);
@@ -256,7 +317,7 @@ void PillarGrid::buildIntervals(ScanPillars& scan) const
                   {
                       const uint32_t b = scan.offsets[p], e = scan.offsets[p + 1];
                       int32_t* cells = scan.cells.data() + b;
-                      std::sort(cells, cells + (e - b));
+                      const std::size_t distinct = sortDistinct(cells, e - b);
 
                       // Horizontal distance from the sensor to the pillar's centre.
                       const PillarIndex idx = unpackKey(scan.keys[p]);
@@ -265,12 +326,12 @@ void PillarGrid::buildIntervals(ScanPillars& scan) const
                       const double dx = cx - t.x(), dy = cy - t.y();
                       const double d = std::sqrt(dx * dx + dy * dy);
                       const double beam_gap = d * beam_slope;  // vertical beam spacing at d
-                      const auto gap_cells = static_cast<int32_t>(
-                          std::floor(std::max(params_.merge_gap, beam_gap) / res + 1e-9));
-                      const auto pad_cells = static_cast<int32_t>(std::ceil(
-                          std::max(params_.interval_padding, 0.5 * beam_gap) / res - 1e-9));
+                      const int32_t gap_cells =
+                          floorCells(std::max(params_.merge_gap, beam_gap) * inv_res + 1e-9);
+                      const int32_t pad_cells = ceilCells(
+                          std::max(params_.interval_padding, 0.5 * beam_gap) * inv_res - 1e-9);
                       scan.span_counts[p] = static_cast<uint32_t>(
-                          buildSpans(cells, e - b, gap_cells, pad_cells, scan.spans.data() + b));
+                          buildSpans(cells, distinct, gap_cells, pad_cells, scan.spans.data() + b));
 
                       int32_t ceiling = kAllHeights;
                       if (need_ceiling)
@@ -296,8 +357,10 @@ InsertStats PillarGrid::mergeScan(const ScanPillars& scan)
     // keeps the pointers valid while the pillars are updated.
     pillars_.reserve(pillars_.size() + np);
     targets_.resize(np);
+    constexpr std::size_t kAhead = 8;  // the table is far bigger than the cache: prefetch
     for (std::size_t p = 0; p < np; ++p)
     {
+        if (p + kAhead < np) pillars_.prefetch(scan.keys[p + kAhead]);
         auto [it, inserted] = pillars_.try_emplace(scan.keys[p]);
         if (inserted)
         {
@@ -314,8 +377,11 @@ InsertStats PillarGrid::mergeScan(const ScanPillars& scan)
     auto update = [&](std::size_t p0, std::size_t p1, std::vector<Interval>& scratch)
     {
         for (std::size_t p = p0; p < p1; ++p)
+        {
+            if (p + kAhead < p1) __builtin_prefetch(targets_[p + kAhead]->intervals.data());
             updatePillar(*targets_[p], scan.spans.data() + scan.offsets[p], scan.span_counts[p],
                          model_, cap, scratch, scan.ceilings[p]);
+        }
     };
     if (threads_ <= 1)
         update(0, np, scratch_);
@@ -358,7 +424,10 @@ bool PillarGrid::isStatic(double x, double y, double z) const
 ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& is_dynamic,
                                    const Eigen::Isometry3d& T) const
 {
-    thread_local ScanPillars scan;  // reused by later calls on this thread
+    // Reused by later calls on this thread. Worker threads must use this thread's object, so
+    // the lambda below captures a reference, never the thread_local name.
+    thread_local ScanPillars scan_buffer;
+    ScanPillars& scan = scan_buffer;
     bucketScan(pts, T, scan, true);
     constexpr uint8_t kUnset = 2;
     is_dynamic.assign(pts.size, kUnset);

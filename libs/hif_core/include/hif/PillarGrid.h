@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -63,7 +64,9 @@ struct ScanPillars
 
     /** @name Per valid point, grouped by pillar
      *  @{ */
-    std::vector<int32_t> cells;   ///< height cell; ascending within a pillar after buildIntervals
+    /** Height cell of each point. After buildIntervals(), each pillar's range starts with its
+     *  distinct cells in ascending order (what follows them is unspecified). */
+    std::vector<int32_t> cells;
     std::vector<uint32_t> index;  ///< input index of cells[k] (filled for classification only)
     std::vector<Span> spans;      ///< at most one span per point, so pillar p's fit at offsets[p]
     /** @} */
@@ -170,6 +173,8 @@ private:
     double static_logodds_ = 0.0;  ///< logit(static_threshold)
     absl::flat_hash_map<uint64_t, Pillar, PackedKeyHash> pillars_;
     std::size_t threads_ = 1;
+    struct Arena;                   ///< TBB arena of threads_ threads (kept out of this header)
+    std::shared_ptr<Arena> arena_;  ///< null when threads_ == 1; shared by copies
 
     // Reused between scans so that insertion does not allocate in steady state.
     ScanPillars scan_;

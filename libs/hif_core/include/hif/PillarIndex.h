@@ -67,17 +67,27 @@ struct PackedKeyHash
     }
 };
 
+/** floor(v) as an int32 in `out`, or false when v is not finite or floor(v) does not fit in
+ *  int32. Exact for every double; converts by truncation and corrects negatives, which is
+ *  several times faster than std::floor on the baseline x86-64 instruction set (no SSE4.1). */
+[[nodiscard]] inline bool floorToInt32(double v, int32_t& out)
+{
+    // floor(v) is in range iff INT32_MIN <= v < INT32_MAX + 1; NaN fails both tests.
+    if (!(v >= -2147483648.0 && v < 2147483648.0)) return false;
+    const auto t = static_cast<int64_t>(v);  // toward zero
+    out = static_cast<int32_t>(t - (v < static_cast<double>(t)));
+    return true;
+}
+
 /** Eq. 1: m = floor((x - x_o) / dx), computed as floor((x - x_o) * (1 / dx)) everywhere in
- *  hif (insertion, queries, classification), so that all agree bit for bit. Returns nullopt when
- * the result does not fit in int32 (or the input is not finite), so callers can count and skip such
- * points. */
+ *  hif (insertion, queries, classification), so that all agree bit for bit. Returns nullopt
+ *  when the result does not fit in int32 (or the input is not finite), so callers can count
+ *  and skip such points. */
 [[nodiscard]] inline std::optional<int32_t> quantize(double v, double origin, double size)
 {
-    const double q = std::floor((v - origin) * (1.0 / size));
-    if (!(q >= static_cast<double>(std::numeric_limits<int32_t>::min()) &&
-          q <= static_cast<double>(std::numeric_limits<int32_t>::max())))
-        return std::nullopt;
-    return static_cast<int32_t>(q);
+    int32_t q = 0;
+    if (!floorToInt32((v - origin) * (1.0 / size), q)) return std::nullopt;
+    return q;
 }
 
 }  // namespace hif
