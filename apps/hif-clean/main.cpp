@@ -104,6 +104,21 @@ struct Cli
                                "Replace earlier results in the output folder (and "
                                "hif_output.pcd in a DynamicMap folder)",
                                cmd};
+    TCLAP::ValueArg<std::size_t> threads{
+        "t",
+        "threads",
+        "Threads for insertion and classification (overrides the .ini's threads; the result "
+        "is the same for any count)",
+        false,
+        1,
+        "N",
+        cmd};
+    TCLAP::SwitchArg hold_scans{
+        "", "hold-scans",
+        "Offline: keep every scan in memory after inserting it, and classify from memory "
+        "instead of reading the input a second time (faster on slow storage; memory grows "
+        "with the sequence)",
+        cmd};
     TCLAP::SwitchArg quiet{"q", "quiet", "No progress bar", cmd};
 };
 
@@ -203,6 +218,13 @@ int run(Cli& cli)
         throw std::runtime_error(
             "config '" + cfg_file + "', section [" + cli.section.getValue() +
             "] defines no CHeightIntervalMap (set CHeightIntervalMap_count=1)");
+    if (cli.threads.isSet())
+    {
+        if (cli.threads.getValue() == 0) throw std::runtime_error("--threads must be >= 1");
+        hif_map->insertionOptions.threads = cli.threads.getValue();
+    }
+    if (cli.hold_scans.getValue() && online)
+        throw std::runtime_error("--hold-scans applies to offline mode only (not --online)");
     const hif::Params prm = hif_map->params();
 
     hif::apps::makeDirs(out_dir);
@@ -222,6 +244,7 @@ int run(Cli& cli)
     std::vector<double> insert_ms, scan_ms;
     std::vector<float> buf[4];
     hif::apps::Scan scan;
+    std::vector<hif::apps::Scan> held;  // --hold-scans
     std::size_t scans = 0;
     const bool show = !cli.quiet.getValue();
 
@@ -243,7 +266,10 @@ int run(Cli& cli)
             }
             else
                 scan_ms.push_back(ms);
-            scan.obs->unload();
+            if (cli.hold_scans.getValue())
+                held.push_back(scan);
+            else
+                scan.obs->unload();
             ++scans;
             progress.update(scans);
         }
@@ -254,14 +280,24 @@ int run(Cli& cli)
     // Pass 2 (offline): classify every point of every scan against the final map.
     if (!online)
     {
-        reader.rewind();
         hif::apps::Progress progress(kTag, "classifying", scans, show);
         std::size_t k = 0;
-        while (reader.next(scan))
+        if (cli.hold_scans.getValue())
+            for (hif::apps::Scan& s : held)
+            {
+                out.classifyAndWrite(*hif_map, s, k, buf);
+                s.obs.reset();  // release each scan once it is written
+                progress.update(++k);
+            }
+        else
         {
-            out.classifyAndWrite(*hif_map, scan, k, buf);
-            scan.obs->unload();
-            progress.update(++k);
+            reader.rewind();
+            while (reader.next(scan))
+            {
+                out.classifyAndWrite(*hif_map, scan, k, buf);
+                scan.obs->unload();
+                progress.update(++k);
+            }
         }
         progress.finish();
     }
@@ -297,6 +333,9 @@ int run(Cli& cli)
     j["pillars"] = hif_map->pillarCount();
     j["intervals"] = hif_map->intervalCount();
     j["max_intervals_per_pillar_seen"] = hif_map->grid().maxIntervalsInAPillar();
+    j["map_bytes"] = hif_map->grid().memoryBytes();
+    j["threads"] = hif_map->grid().threads();
+    j["held_scans"] = cli.hold_scans.getValue();
     j["scan_ms_median"] = per_scan.median;
     j["scan_ms_p90"] = per_scan.p90;
     j["scan_ms_max"] = per_scan.max;
@@ -341,7 +380,8 @@ int run(Cli& cli)
               << (out.points_invalid ? ", invalid " + std::to_string(out.points_invalid) : "")
               << "\n"
               << kTag << " map: " << hif_map->pillarCount() << " pillars, "
-              << hif_map->intervalCount() << " intervals\n"
+              << hif_map->intervalCount() << " intervals, "
+              << double(hif_map->grid().memoryBytes()) / (1024.0 * 1024.0) << " MiB\n"
               << kTag << " ms per scan (" << (online ? "insert+classify" : "insert") << "): median "
               << per_scan.median << ", p90 " << per_scan.p90 << ", max " << per_scan.max
               << "; classify median " << cls.median << "\n"

@@ -46,6 +46,7 @@ unseen_height_prior=false
 beam_spacing_deg=0.3
 static_threshold=0.55
 max_intervals_per_pillar=17
+threads=2
 )";
 
 mrpt::maps::TSetOfMetricMapInitializers initializersFrom(const std::string& ini)
@@ -97,6 +98,7 @@ TEST(CHeightIntervalMapIni, CreatedThroughCMultiMetricMapWithEveryOption)
     EXPECT_DOUBLE_EQ(p.beam_spacing_deg, 0.3);
     EXPECT_DOUBLE_EQ(p.static_threshold, 0.55);
     EXPECT_EQ(p.max_intervals_per_pillar, 17u);
+    EXPECT_EQ(map->grid().threads(), 2u);
 
     // The multi-map forwards observations to it.
     auto obs = mrpt::obs::CObservationPointCloud::Create();
@@ -123,6 +125,7 @@ TEST(CHeightIntervalMapIni, OptionsSaveLoadRoundTrip)
     a.beam_spacing_deg = 0.123456789012345;
     a.static_threshold = 0.62;
     a.max_intervals_per_pillar = 9;
+    a.threads = 3;
     mrpt::config::CConfigFileMemory cfg;
     a.saveToConfigFile(cfg, "opts");
     CHeightIntervalMap::TInsertionOptions b;
@@ -143,6 +146,8 @@ TEST(CHeightIntervalMapIni, OptionsSaveLoadRoundTrip)
     EXPECT_EQ(b.beam_spacing_deg, a.beam_spacing_deg);
     EXPECT_EQ(b.static_threshold, a.static_threshold);
     EXPECT_EQ(b.max_intervals_per_pillar, a.max_intervals_per_pillar);
+    EXPECT_EQ(b.threads, a.threads);
+    EXPECT_EQ(b_text.threads, a.threads);
 
     // Every field of the map's parameters goes through the options: nothing is left at its
     // default by a missing load or save line.
@@ -182,6 +187,19 @@ TEST(CHeightIntervalMapIni, BadValuesAreRejectedWithSectionAndField)
         const std::string msg = e.what();
         EXPECT_NE(msg.find("pillar_size"), std::string::npos) << msg;
         EXPECT_NE(msg.find("creationOpts"), std::string::npos) << msg;
+    }
+    std::string ini3 = kIni;
+    ini3.replace(ini3.find("threads=2"), 9, "threads=0");
+    try
+    {
+        initializersFrom(ini3);
+        FAIL() << "threads=0 accepted";
+    }
+    catch (const std::exception& e)
+    {
+        const std::string msg = e.what();
+        EXPECT_NE(msg.find("threads"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("insertOpts"), std::string::npos) << msg;
     }
 }
 

@@ -160,6 +160,8 @@ void CHeightIntervalMap::syncParams() const
 {
     const Params p = params();
     if (p != grid_.params()) grid_.setParams(p);
+    if (insertionOptions.threads != grid_.threads())
+        grid_.setThreads(static_cast<std::size_t>(insertionOptions.threads));
 }
 
 const PillarGrid& CHeightIntervalMap::grid() const
@@ -184,6 +186,8 @@ void CHeightIntervalMap::TInsertionOptions::loadFromConfigFile(
     MRPT_LOAD_CONFIG_VAR_CS(beam_spacing_deg, double);
     MRPT_LOAD_CONFIG_VAR_CS(static_threshold, double);
     MRPT_LOAD_CONFIG_VAR_CS(max_intervals_per_pillar, uint64_t);
+    MRPT_LOAD_CONFIG_VAR_CS(threads, uint64_t);
+    if (threads == 0) throw std::invalid_argument("[" + s + "] threads = 0: must be >= 1");
     // Validate now, so that a bad value is reported with the section it came from.
     CHeightIntervalMap probe;
     probe.insertionOptions = *this;
@@ -225,6 +229,8 @@ void CHeightIntervalMap::TInsertionOptions::saveToConfigFile(mrpt::config::CConf
     exact("static_threshold", static_threshold, "Static when P(static) >= this");
     c.write(s, "max_intervals_per_pillar", max_intervals_per_pillar, -1, -1,
             "Bound on intervals per pillar");
+    c.write(s, "threads", threads, -1, -1,
+            "Threads for insertion and classification (same map for any count)");
 }
 
 void CHeightIntervalMap::TInsertionOptions::writeToStream(mrpt::serialization::CArchive& out) const

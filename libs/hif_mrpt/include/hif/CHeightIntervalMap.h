@@ -118,6 +118,10 @@ public:
         double static_threshold = Params().static_threshold;
         /** Bound on intervals per pillar (Default: 16) */
         uint64_t max_intervals_per_pillar = Params().max_intervals_per_pillar;
+        /** Threads for insertion and classification, >= 1; any count gives the same map. A
+         *  property of the machine, not of the map: read from and written to .ini files but
+         *  not serialized with the map (Default: 1) */
+        uint64_t threads = 1;
 
         /** Loads every field; throws if the result is invalid, naming the section and field. */
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
