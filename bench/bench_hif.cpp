@@ -6,6 +6,7 @@
  */
 #include <benchmark/benchmark.h>
 #include <mrpt/maps/CPointsMapXYZI.h>
+#include <mrpt/obs/CObservationPointCloud.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -13,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "hif/CHeightIntervalMap.h"
 #include "hif/PillarGrid.h"
 #include "hif/apps/KittiSequence.h"
 
@@ -190,6 +192,34 @@ void BM_InsertStep(benchmark::State& state)
     state.counters["pillars/scan"] = double(pillars) / double(state.iterations());
 }
 BENCHMARK(BM_InsertStep)->ArgName("step")->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+/** BM_Insert through MRPT: CHeightIntervalMap::insertObservation() of a CObservationPointCloud
+ *  at a CPose3D, what rawlog tools and SLAM call. The difference to BM_Insert is the adapter. */
+void BM_InsertThroughMrpt(benchmark::State& state)
+{
+    if (!haveScans(state)) return;
+    std::vector<mrpt::obs::CObservationPointCloud> obs(scans().size());
+    std::vector<mrpt::poses::CPose3D> poses;
+    for (std::size_t i = 0; i < scans().size(); ++i)
+    {
+        obs[i].pointcloud = mrpt::maps::CPointsMapXYZI::Create(scans().clouds[i]);
+        poses.emplace_back(mrpt::math::CMatrixDouble44(scans().poses[i].matrix()));
+    }
+    hif::CHeightIntervalMap map;
+    std::size_t k = 0;
+    for (auto _ : state)
+    {
+        benchmark::DoNotOptimize(map.insertObservation(obs[k], poses[k]));
+        if (++k == scans().size())
+        {
+            state.PauseTiming();
+            k = 0;
+            map.clear();
+            state.ResumeTiming();
+        }
+    }
+}
+BENCHMARK(BM_InsertThroughMrpt)->Unit(benchmark::kMillisecond);
 
 /** Classification of one scan's points against the map of all scans. */
 void BM_Classify(benchmark::State& state)

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -215,8 +216,9 @@ TEST_P(AgainstReference, RandomScansGiveTheSameProbabilitiesEverywhere)
 INSTANTIATE_TEST_SUITE_P(Lhp, AgainstReference, ::testing::Values(true, false));
 
 // Dense pillars (heights deduplicated with the bitmap), pillars spanning hundreds of metres in
-// height (comparison sort), and a point millions of metres away (the scan's bounding box is
-// too large for the counting sort, so pillars are grouped by a comparison sort): the grid must
+// height (comparison sort), a point millions of metres away (the scan's bounding box is too
+// large for the counting sort, so pillars are grouped by a comparison sort), and scans of
+// several 16k-point chunks with NaN points in each (compaction between chunks): the grid must
 // still agree with the reference, and with itself on 3 threads, bit for bit.
 TEST(AgainstReference, DenseTallAndFarScansOnOneAndThreeThreads)
 {
@@ -227,24 +229,28 @@ TEST(AgainstReference, DenseTallAndFarScansOnOneAndThreeThreads)
     ReferenceHif ref(prm);
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> u(0, 1);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
     for (int scan = 0; scan < 12; ++scan)
     {
-        auto pts = randomScan(rng, 3000, 0.2 * scan);  // about 100 points per pillar
-        for (int i = 0; i < 200; ++i)                  // tall pillars
+        // About 100 points per pillar; every other scan spans three chunks.
+        auto pts = randomScan(rng, scan % 2 ? 40000 : 3000, 0.2 * scan);
+        for (int i = 0; i < 200; ++i)  // tall pillars
             pts.push_back({10.5 + 3 * u(rng), -4.5, -300.0 + 600.0 * u(rng)});
         if (scan % 3 == 0) pts.push_back({3.0e6 + scan, -2.0e6, 1.0});
         std::vector<float> x, y, z;
-        std::vector<std::array<double, 3>> as_float;
-        for (const auto& q : pts)
+        std::vector<std::array<double, 3>> as_float;  // the reference gets the valid points
+        for (std::size_t i = 0; i < pts.size(); ++i)
         {
-            x.push_back(float(q[0]));
-            y.push_back(float(q[1]));
-            z.push_back(float(q[2]));
-            as_float.push_back({x.back(), y.back(), z.back()});
+            const bool invalid = i % 997 == 3;
+            x.push_back(invalid ? nan : float(pts[i][0]));
+            y.push_back(float(pts[i][1]));
+            z.push_back(float(pts[i][2]));
+            if (!invalid) as_float.push_back({x.back(), y.back(), z.back()});
         }
         const PointsView view{x.data(), y.data(), z.data(), x.size()};
         const InsertStats st = grid.insertScan(view);
-        EXPECT_EQ(st.points_used, pts.size());
+        EXPECT_EQ(st.points_used, as_float.size());
+        EXPECT_EQ(st.points_invalid, pts.size() - as_float.size());
         grid3.insertScan(view);
         ref.insert(as_float);
         compareAll(grid, ref, prm);

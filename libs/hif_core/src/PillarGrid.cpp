@@ -10,6 +10,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -173,39 +174,90 @@ void PillarGrid::bucketScan(const PointsView& pts, const Eigen::Isometry3d& T, S
     if (keep_index) out.tmp_src.resize(pts.size);
 
     // Pass 1: transform, quantize (Eq. 1; as quantize(), without std::optional) and keep the
-    // valid points, with the bounding box of their pillars and the top beam's elevation.
+    // valid points, with the bounding box of their pillars and the top beam's elevation. In
+    // fixed chunks (whatever the thread count, so the result is the same), each compacted in
+    // place, then moved together.
     constexpr double kMinR2 = kMinRangeForElevation * kMinRangeForElevation;
+    constexpr std::size_t kChunk = 16384;
+    struct Chunk
+    {
+        std::size_t valid = 0;
+        int32_t m_min = std::numeric_limits<int32_t>::max();
+        int32_t m_max = std::numeric_limits<int32_t>::min();
+        int32_t n_min = std::numeric_limits<int32_t>::max();
+        int32_t n_max = std::numeric_limits<int32_t>::min();
+        double top_num = -1.0, top_den = 0.0;  // top_slope_sq = top_num / top_den
+    };
+    const std::size_t n_chunks = (pts.size + kChunk - 1) / kChunk;
+    std::array<Chunk, 64> small_chunks;  // up to 1M points without allocation
+    std::vector<Chunk> big_chunks(n_chunks > small_chunks.size() ? n_chunks : 0);
+    Chunk* chunks = big_chunks.empty() ? small_chunks.data() : big_chunks.data();
+    forRanges(n_chunks, 1,
+              [&](std::size_t c0, std::size_t c1)
+              {
+                  for (std::size_t c = c0; c < c1; ++c)
+                  {
+                      Chunk ch;
+                      const std::size_t i0 = c * kChunk, i1 = std::min(pts.size, i0 + kChunk);
+                      std::size_t v = i0;
+                      for (std::size_t i = i0; i < i1; ++i)
+                      {
+                          const double sx = pts.x[i], sy = pts.y[i], sz = pts.z[i];
+                          const double wx = R(0, 0) * sx + R(0, 1) * sy + R(0, 2) * sz + t.x();
+                          const double wy = R(1, 0) * sx + R(1, 1) * sy + R(1, 2) * sz + t.y();
+                          const double wz = R(2, 0) * sx + R(2, 1) * sy + R(2, 2) * sz + t.z();
+                          int32_t m = 0, n = 0, zc = 0;
+                          // Non-finite points fail here too.
+                          if (!floorToInt32((wx - ox) * inv_xy, m) ||
+                              !floorToInt32((wy - oy) * inv_xy, n) || !floorToInt32(wz * inv_z, zc))
+                              continue;
+                          out.tmp_m[v] = m;
+                          out.tmp_n[v] = n;
+                          out.tmp_z[v] = zc;
+                          if (keep_index) out.tmp_src[v] = static_cast<uint32_t>(i);
+                          ++v;
+                          ch.m_min = std::min(ch.m_min, m);
+                          ch.m_max = std::max(ch.m_max, m);
+                          ch.n_min = std::min(ch.n_min, n);
+                          ch.n_max = std::max(ch.n_max, n);
+                          // Largest z / r as z |z| / r^2, by cross-multiplication (r^2 > 0).
+                          const double r2 = sx * sx + sy * sy;
+                          if (r2 > kMinR2 && sz * std::abs(sz) * ch.top_den > ch.top_num * r2)
+                          {
+                              ch.top_num = sz * std::abs(sz);
+                              ch.top_den = r2;
+                          }
+                      }
+                      ch.valid = v - i0;
+                      chunks[c] = ch;
+                  }
+              });
     int32_t m_min = std::numeric_limits<int32_t>::max(),
             m_max = std::numeric_limits<int32_t>::min();
     int32_t n_min = m_min, n_max = m_max;
-    double top_num = -1.0, top_den = 0.0;  // top_slope_sq = top_num / top_den
+    double top_num = -1.0, top_den = 0.0;
     std::size_t v = 0;
-    for (std::size_t i = 0; i < pts.size; ++i)
+    for (std::size_t c = 0; c < n_chunks; ++c)
     {
-        const double sx = pts.x[i], sy = pts.y[i], sz = pts.z[i];
-        const double wx = R(0, 0) * sx + R(0, 1) * sy + R(0, 2) * sz + t.x();
-        const double wy = R(1, 0) * sx + R(1, 1) * sy + R(1, 2) * sz + t.y();
-        const double wz = R(2, 0) * sx + R(2, 1) * sy + R(2, 2) * sz + t.z();
-        int32_t m = 0, n = 0, zc = 0;
-        // Non-finite points fail here too.
-        if (!floorToInt32((wx - ox) * inv_xy, m) || !floorToInt32((wy - oy) * inv_xy, n) ||
-            !floorToInt32(wz * inv_z, zc))
-            continue;
-        out.tmp_m[v] = m;
-        out.tmp_n[v] = n;
-        out.tmp_z[v] = zc;
-        if (keep_index) out.tmp_src[v] = static_cast<uint32_t>(i);
-        ++v;
-        m_min = std::min(m_min, m);
-        m_max = std::max(m_max, m);
-        n_min = std::min(n_min, n);
-        n_max = std::max(n_max, n);
-        // Largest z / r as z |z| / r^2, compared by cross-multiplication (r^2 > 0).
-        const double r2 = sx * sx + sy * sy;
-        if (r2 > kMinR2 && sz * std::abs(sz) * top_den > top_num * r2)
+        const Chunk& ch = chunks[c];
+        const std::size_t from = c * kChunk;
+        if (from != v && ch.valid > 0)  // close the gap left by invalid points
         {
-            top_num = sz * std::abs(sz);
-            top_den = r2;
+            std::copy_n(out.tmp_m.begin() + from, ch.valid, out.tmp_m.begin() + v);
+            std::copy_n(out.tmp_n.begin() + from, ch.valid, out.tmp_n.begin() + v);
+            std::copy_n(out.tmp_z.begin() + from, ch.valid, out.tmp_z.begin() + v);
+            if (keep_index)
+                std::copy_n(out.tmp_src.begin() + from, ch.valid, out.tmp_src.begin() + v);
+        }
+        v += ch.valid;
+        m_min = std::min(m_min, ch.m_min);
+        m_max = std::max(m_max, ch.m_max);
+        n_min = std::min(n_min, ch.n_min);
+        n_max = std::max(n_max, ch.n_max);
+        if (ch.top_den > 0.0 && ch.top_num * top_den > top_num * ch.top_den)
+        {
+            top_num = ch.top_num;
+            top_den = ch.top_den;
         }
     }
     if (top_den > 0.0) out.top_slope_sq = top_num / top_den;
