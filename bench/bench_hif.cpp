@@ -145,6 +145,32 @@ void BM_Insert(benchmark::State& state)
 }
 BENCHMARK(BM_Insert)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
+/** BM_Insert with the offline configuration (share/hif/config/kitti.ini: see-through misses
+ *  within 40 m, p_empty_init 0.42). The difference to BM_Insert/threads:1 is the cost of the
+ *  see-through misses. */
+void BM_InsertOfflineConfig(benchmark::State& state)
+{
+    if (!haveScans(state)) return;
+    hif::Params prm;
+    prm.p_empty_init = 0.42;
+    prm.see_through_range = 40.0;
+    prm.see_through_margin = 2.5;
+    hif::PillarGrid g(prm);
+    std::size_t k = 0;
+    for (auto _ : state)
+    {
+        benchmark::DoNotOptimize(g.insertScan(scans().view(k), scans().poses[k]));
+        if (++k == scans().size())
+        {
+            state.PauseTiming();
+            k = 0;
+            g.clear();
+            state.ResumeTiming();
+        }
+    }
+}
+BENCHMARK(BM_InsertOfflineConfig)->Unit(benchmark::kMillisecond);
+
 /** The steps of one insertion, each timed alone on the same scans and the same growing map:
  *  0 = quantization and bucketing, 1 = interval construction (sort heights, spans), 2 = merge
  *  into the map (find or create pillars, Bayes update). */

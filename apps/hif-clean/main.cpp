@@ -361,6 +361,8 @@ int run(Cli& cli)
     pj["high_height_preservation"] = prm.high_height_preservation;
     pj["unseen_height_prior"] = prm.unseen_height_prior;
     pj["beam_spacing_deg"] = prm.beam_spacing_deg;
+    pj["see_through_range"] = prm.see_through_range;
+    pj["see_through_margin"] = prm.see_through_margin;
     pj["static_threshold"] = prm.static_threshold;
     pj["max_intervals_per_pillar"] = prm.max_intervals_per_pillar;
     j["parameters"] = pj;

@@ -438,3 +438,59 @@ TEST(HighHeightPreservation, GridMeasuresTheTopBeamFromTheScan)
     for (int s = 0; s < 5; ++s) g2.insertScan({x2.data(), y2.data(), z2.data(), x2.size()}, T);
     EXPECT_FALSE(g2.isStatic(30.5, 0.5, 2.5)) << "without HHP the wall top is lost";
 }
+
+namespace
+{
+/** Points at `range` from the origin in the direction of (x, y), at elevations covering the
+ *  heights [z0, z1] at horizontal distance hypot(x, y), every 0.1 degree. */
+void beamsToward(double x, double y, double z0, double z1, double range, std::vector<float>& px,
+                 std::vector<float>& py, std::vector<float>& pz)
+{
+    const double d = std::hypot(x, y), az = std::atan2(y, x);
+    const double e0 = std::atan2(z0, d), e1 = std::atan2(z1, d);
+    for (double e = e0; e <= e1; e += 0.1 * M_PI / 180.0)
+    {
+        px.push_back(float(range * std::cos(e) * std::cos(az)));
+        py.push_back(float(range * std::cos(e) * std::sin(az)));
+        pz.push_back(float(range * std::sin(e)));
+    }
+}
+
+/** A "car" in pillar (20, 0) seen once; then one scan whose beams toward it return at
+ *  `returns` (ranges). Is the car still static? */
+bool carStaticAfter(double see_through_range, const std::vector<double>& returns)
+{
+    Params prm;
+    prm.see_through_range = see_through_range;
+    PillarGrid grid(prm);
+    std::vector<float> x, y, z;
+    for (double h = -1.2; h <= -0.2; h += 0.05)
+    {
+        x.push_back(20.5f);
+        y.push_back(0.5f);
+        z.push_back(float(h));
+    }
+    grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+    EXPECT_TRUE(grid.isStatic(20.5, 0.5, -0.7));
+    x.clear(), y.clear(), z.clear();
+    for (double r : returns) beamsToward(20.5, 0.5, -1.1, -0.3, r, x, y, z);
+    const InsertStats st = grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+    EXPECT_EQ(grid.findPillar({20, 0})->intervals.size(), 1u);
+    EXPECT_GT(st.pillars_created, 0u);  // the returns landed in other pillars
+    return grid.isStatic(20.5, 0.5, -0.7);
+}
+}  // namespace
+
+TEST(SeeThroughMisses, BeamsThatPassedThroughAPillarEmptyIt)
+{
+    // Off (the paper): a pillar no return falls in is untouched.
+    EXPECT_TRUE(carStaticAfter(0.0, {40.0}));
+    // On: the beams returned 20 m beyond the car's pillar, so it is free now.
+    EXPECT_FALSE(carStaticAfter(40.0, {40.0}));
+    // A return near the pillar (within the 2.5 m margin) vetoes: something is there.
+    EXPECT_TRUE(carStaticAfter(40.0, {40.0, 22.0}));
+    // Returns in front of it (occlusion) say nothing about it.
+    EXPECT_TRUE(carStaticAfter(40.0, {10.0}));
+    // Beyond see_through_range the pillar is not considered.
+    EXPECT_TRUE(carStaticAfter(15.0, {40.0}));
+}

@@ -125,6 +125,8 @@ TEST(CHeightIntervalMapIni, OptionsSaveLoadRoundTrip)
     a.beam_spacing_deg = 0.123456789012345;
     a.static_threshold = 0.62;
     a.max_intervals_per_pillar = 9;
+    a.see_through_range = 33.5;
+    a.see_through_margin = 1.75;
     a.threads = 3;
     mrpt::config::CConfigFileMemory cfg;
     a.saveToConfigFile(cfg, "opts");
@@ -146,6 +148,8 @@ TEST(CHeightIntervalMapIni, OptionsSaveLoadRoundTrip)
     EXPECT_EQ(b.beam_spacing_deg, a.beam_spacing_deg);
     EXPECT_EQ(b.static_threshold, a.static_threshold);
     EXPECT_EQ(b.max_intervals_per_pillar, a.max_intervals_per_pillar);
+    EXPECT_EQ(b.see_through_range, a.see_through_range);
+    EXPECT_EQ(b.see_through_margin, a.see_through_margin);
     EXPECT_EQ(b.threads, a.threads);
     EXPECT_EQ(b_text.threads, a.threads);
 
@@ -208,6 +212,7 @@ TEST(CHeightIntervalMapSerialization, RoundTripThroughClassFactoryIsExact)
     CHeightIntervalMap map(0.5, 0.1, -0.2, 0.02);
     map.insertionOptions.alpha = 0.65;
     map.insertionOptions.low_height_preservation = false;
+    map.insertionOptions.see_through_range = 12.0;
     map.genericMapParams.enableSaveAs3DObject = false;
     insertRandomScans(map, 25);
     ASSERT_GT(map.intervalCount(), 100u);
@@ -264,9 +269,15 @@ TEST(CHeightIntervalMapIni, ShippedKittiConfigsLoadTheDocumentedDefaults)
         mrpt::maps::CMultiMetricMap multi(inits);
         const auto map = multi.mapByClass<CHeightIntervalMap>();
         ASSERT_TRUE(map) << name;
-        // The offline default differs from hif::Params() in p_empty_init only (doc/algorithm.md).
+        // The offline default differs from hif::Params() in p_empty_init and the see-through
+        // misses only (doc/algorithm.md).
         hif::Params expected;
-        if (std::string(name) == "kitti.ini") expected.p_empty_init = 0.42;
+        if (std::string(name) == "kitti.ini")
+        {
+            expected.p_empty_init = 0.42;
+            expected.see_through_range = 40.0;
+            expected.see_through_margin = 2.5;
+        }
         EXPECT_EQ(map->params(), expected) << name;
     }
 }

@@ -49,6 +49,13 @@ void Params::validate() const
     requireFinite("beam_spacing_deg", beam_spacing_deg);
     if (!(beam_spacing_deg >= 0.0 && beam_spacing_deg < 10.0))
         fail("beam_spacing_deg", beam_spacing_deg, "in [0, 10)");
+    requireFinite("see_through_range", see_through_range);
+    if (!(see_through_range >= 0.0 && see_through_range <= 1000.0))
+        fail("see_through_range", see_through_range, "in [0, 1000]");
+    if (!(see_through_range <= 2000.0 * pillar_size))
+        fail("see_through_range", see_through_range, "<= 2000 pillar sizes");
+    requireFinite("see_through_margin", see_through_margin);
+    if (!(see_through_margin >= 0.0)) fail("see_through_margin", see_through_margin, ">= 0");
     if (!(static_threshold > 0.0 && static_threshold < 1.0))
         fail("static_threshold", static_threshold, "in (0, 1)");
     if (max_intervals_per_pillar < 1)
@@ -73,7 +80,9 @@ bool operator==(const Params& a, const Params& b)
            a.low_height_preservation == b.low_height_preservation &&
            a.high_height_preservation == b.high_height_preservation &&
            a.unseen_height_prior == b.unseen_height_prior &&
-           a.beam_spacing_deg == b.beam_spacing_deg && a.static_threshold == b.static_threshold &&
+           a.beam_spacing_deg == b.beam_spacing_deg && a.see_through_range == b.see_through_range &&
+           a.see_through_margin == b.see_through_margin &&
+           a.static_threshold == b.static_threshold &&
            a.max_intervals_per_pillar == b.max_intervals_per_pillar;
 }
 

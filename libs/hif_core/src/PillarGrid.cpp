@@ -154,7 +154,143 @@ InsertStats PillarGrid::insertScan(const PointsView& pts, const Eigen::Isometry3
 {
     bucketScan(pts, T, scan_);
     buildIntervals(scan_);
-    return mergeScan(scan_);
+    const InsertStats st = mergeScan(scan_);
+    if (params_.see_through_range > 0.0) seeThroughMisses(pts, T, scan_);
+    return st;
+}
+
+namespace
+{
+/** atan2 within about 1e-5 rad (a fraction of a range-image cell), several times faster than
+ *  std::atan2. */
+inline double fastAtan2(double y, double x)
+{
+    const double ax = std::abs(x), ay = std::abs(y);
+    const double mx = std::max(ax, ay), mn = std::min(ax, ay);
+    if (mx == 0.0) return 0.0;
+    const double a = mn / mx, s = a * a;
+    double r = ((-0.0464964749 * s + 0.15931422) * s - 0.327622764) * s * a + a;
+    if (ay > ax) r = M_PI_2 - r;
+    if (x < 0) r = M_PI - r;
+    return y < 0 ? -r : r;
+}
+
+// Range image of see-through misses: 0.2 degree cells, elevations in [-30, +15) degrees.
+constexpr double kImageRes = 0.2 * M_PI / 180.0;
+constexpr double kImageElMin = -30.0 * M_PI / 180.0;
+constexpr double kImageElMax = 15.0 * M_PI / 180.0;
+constexpr int kImageCols = static_cast<int>(2 * M_PI / kImageRes) + 1;
+constexpr int kImageRows = static_cast<int>((kImageElMax - kImageElMin) / kImageRes) + 1;
+
+/** Cell of the range image at (azimuth, elevation), or -1 outside its elevations. */
+inline int imageCell(double az, double el)
+{
+    if (!(el >= kImageElMin && el < kImageElMax)) return -1;
+    const int c = std::min(kImageCols - 1, static_cast<int>((az + M_PI) / kImageRes));
+    const int r = std::min(kImageRows - 1, static_cast<int>((el - kImageElMin) / kImageRes));
+    return r * kImageCols + c;
+}
+}  // namespace
+
+void PillarGrid::seeThroughMisses(const PointsView& pts, const Eigen::Isometry3d& T,
+                                  const ScanPillars& scan)
+{
+    // Nearest return of the scan in every cell of a range image (sensor frame).
+    auto& img = see_through_image_;
+    img.assign(static_cast<std::size_t>(kImageCols) * kImageRows,
+               std::numeric_limits<float>::infinity());
+    for (std::size_t i = 0; i < pts.size; ++i)
+    {
+        const double x = pts.x[i], y = pts.y[i], z = pts.z[i];
+        if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) continue;
+        const double rxy = std::sqrt(x * x + y * y);
+        const int k = imageCell(fastAtan2(y, x), fastAtan2(z, rxy));
+        if (k < 0) continue;
+        const auto range = static_cast<float>(std::sqrt(rxy * rxy + z * z));
+        float& cell = img[static_cast<std::size_t>(k)];
+        cell = std::min(cell, range);
+    }
+
+    // The map's pillars within see_through_range of the sensor that the scan did not hit.
+    const double ps = params_.pillar_size, res = params_.height_resolution;
+    const double range = params_.see_through_range, margin = params_.see_through_margin;
+    const Eigen::Vector3d t = T.translation();
+    const Eigen::Matrix3d Rt = T.linear().transpose();
+    int32_t cm = 0, cn = 0;
+    if (!floorToInt32((t.x() - params_.origin_x) / ps, cm) ||
+        !floorToInt32((t.y() - params_.origin_y) / ps, cn))
+        return;
+    const int64_t w = static_cast<int64_t>(std::ceil(range / ps));
+    const int64_t side = 2 * w + 1;
+    auto& hit = see_through_hit_;
+    hit.assign(static_cast<std::size_t>(side * side), 0);
+    for (uint64_t key : scan.keys)
+    {
+        const PillarIndex idx = unpackKey(key);
+        const int64_t a = int64_t{idx.m} - cm + w, b = int64_t{idx.n} - cn + w;
+        if (a >= 0 && a < side && b >= 0 && b < side)
+            hit[static_cast<std::size_t>(a * side + b)] = 1;
+    }
+    for (int64_t a = 0; a < side; ++a)
+        for (int64_t b = 0; b < side; ++b)
+        {
+            const int64_t m = cm + a - w, n = cn + b - w;
+            if (hit[static_cast<std::size_t>(a * side + b)] || m < INT32_MIN || m > INT32_MAX ||
+                n < INT32_MIN || n > INT32_MAX)
+                continue;
+            const PillarIndex idx{static_cast<int32_t>(m), static_cast<int32_t>(n)};
+            const auto it = pillars_.find(packKey(idx));
+            if (it == pillars_.end()) continue;
+            const double cx = params_.origin_x + (idx.m + 0.5) * ps;
+            const double cy = params_.origin_y + (idx.n + 0.5) * ps;
+            if (std::hypot(cx - t.x(), cy - t.y()) > range) continue;
+            Pillar& pil = it->second;
+            bool changed = false;
+            for (Interval& iv : pil.intervals)
+            {
+                // The beams in the pillar centre's direction between the interval's bottom and
+                // top: one that returned beyond it (by more than the margin) passed through it;
+                // one that returned near it vetoes (something is there).
+                const Eigen::Vector3d lo = Rt * (Eigen::Vector3d(cx, cy, iv.lo * res) - t);
+                const Eigen::Vector3d hi = Rt * (Eigen::Vector3d(cx, cy, iv.hi * res) - t);
+                const double d = std::hypot(lo.x(), lo.y());
+                const double az = fastAtan2(lo.y(), lo.x());
+                const int k0 = imageCell(az, std::max(fastAtan2(lo.z(), d), kImageElMin));
+                const int k1 = imageCell(az, std::min(fastAtan2(hi.z(), d), kImageElMax - 1e-9));
+                if (k0 < 0 || k1 < 0) continue;
+                bool through = false, veto = false;
+                for (int k = k0; k <= k1 && !veto; k += kImageCols)
+                {
+                    const float r = img[static_cast<std::size_t>(k)];
+                    if (!std::isfinite(r)) continue;  // no return: no evidence
+                    const double el = kImageElMin + (k / kImageCols + 0.5) * kImageRes;
+                    const double dist = d / std::cos(el);  // to the pillar's axis on this beam
+                    if (r > dist + margin)
+                        through = true;
+                    else if (r > dist - margin)
+                        veto = true;
+                    // else: occluded by something closer, no evidence
+                }
+                if (through && !veto)
+                {
+                    iv.logodds = model_.clamp(iv.logodds + model_.miss);  // Eq. 13
+                    changed = true;
+                }
+            }
+            if (changed)  // restore the invariant: touching intervals never share a log-odds
+            {
+                auto& v = pil.intervals;
+                std::size_t o = 0;
+                for (std::size_t k = 1; k < v.size(); ++k)
+                {
+                    if (v[o].hi == v[k].lo && v[o].logodds == v[k].logodds)
+                        v[o].hi = v[k].hi;
+                    else
+                        v[++o] = v[k];
+                }
+                if (!v.empty()) v.resize(o + 1);
+            }
+        }
 }
 
 void PillarGrid::bucketScan(const PointsView& pts, const Eigen::Isometry3d& T, ScanPillars& out,

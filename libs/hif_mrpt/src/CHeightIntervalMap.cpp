@@ -151,6 +151,8 @@ Params CHeightIntervalMap::params() const
     p.high_height_preservation = o.high_height_preservation;
     p.unseen_height_prior = o.unseen_height_prior;
     p.beam_spacing_deg = o.beam_spacing_deg;
+    p.see_through_range = o.see_through_range;
+    p.see_through_margin = o.see_through_margin;
     p.static_threshold = o.static_threshold;
     p.max_intervals_per_pillar = static_cast<std::size_t>(o.max_intervals_per_pillar);
     return p;
@@ -186,6 +188,8 @@ void CHeightIntervalMap::TInsertionOptions::loadFromConfigFile(
     MRPT_LOAD_CONFIG_VAR_CS(beam_spacing_deg, double);
     MRPT_LOAD_CONFIG_VAR_CS(static_threshold, double);
     MRPT_LOAD_CONFIG_VAR_CS(max_intervals_per_pillar, uint64_t);
+    MRPT_LOAD_CONFIG_VAR_CS(see_through_range, double);
+    MRPT_LOAD_CONFIG_VAR_CS(see_through_margin, double);
     MRPT_LOAD_CONFIG_VAR_CS(threads, uint64_t);
     if (threads == 0) throw std::invalid_argument("[" + s + "] threads = 0: must be >= 1");
     // Validate now, so that a bad value is reported with the section it came from.
@@ -226,6 +230,10 @@ void CHeightIntervalMap::TInsertionOptions::saveToConfigFile(mrpt::config::CConf
             "New intervals above every seen height start at p_empty_init (not in the paper)");
     exact("beam_spacing_deg", beam_spacing_deg,
           "Range-adaptive intervals: vertical beam spacing [deg], 0 = off (not in the paper)");
+    exact("see_through_range", see_through_range,
+          "See-through misses within this distance [m], 0 = off (not in the paper)");
+    exact("see_through_margin", see_through_margin,
+          "A return this far beyond a pillar passed through it [m]");
     exact("static_threshold", static_threshold, "Static when P(static) >= this");
     c.write(s, "max_intervals_per_pillar", max_intervals_per_pillar, -1, -1,
             "Bound on intervals per pillar");
@@ -237,14 +245,19 @@ void CHeightIntervalMap::TInsertionOptions::writeToStream(mrpt::serialization::C
 {
     out << merge_gap << interval_padding << alpha << beta << p_min << p_max << p_empty_init
         << low_height_preservation << high_height_preservation << unseen_height_prior
-        << beam_spacing_deg << static_threshold << max_intervals_per_pillar;
+        << beam_spacing_deg << static_threshold << max_intervals_per_pillar << see_through_range
+        << see_through_margin;
 }
 
-void CHeightIntervalMap::TInsertionOptions::readFromStream(mrpt::serialization::CArchive& in)
+void CHeightIntervalMap::TInsertionOptions::readFromStream(mrpt::serialization::CArchive& in,
+                                                           uint8_t version)
 {
     in >> merge_gap >> interval_padding >> alpha >> beta >> p_min >> p_max >> p_empty_init >>
         low_height_preservation >> high_height_preservation >> unseen_height_prior >>
         beam_spacing_deg >> static_threshold >> max_intervals_per_pillar;
+    see_through_range = Params().see_through_range;  // version 0: the option did not exist
+    see_through_margin = Params().see_through_margin;
+    if (version >= 1) in >> see_through_range >> see_through_margin;
 }
 
 CHeightIntervalMap::TMapDefinition::TMapDefinition() = default;
@@ -494,10 +507,10 @@ float CHeightIntervalMap::compute3DMatchingRatio(const mrpt::maps::CMetricMap* o
 }
 
 // ---------------------------------------------------------------------------------------------
-// Serialization (version 0)
+// Serialization (version 1 adds the see-through options; version 0 is still read)
 // ---------------------------------------------------------------------------------------------
 
-uint8_t CHeightIntervalMap::serializeGetVersion() const { return 0; }
+uint8_t CHeightIntervalMap::serializeGetVersion() const { return 1; }
 
 void CHeightIntervalMap::serializeTo(mrpt::serialization::CArchive& out) const
 {
@@ -520,10 +533,11 @@ void CHeightIntervalMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_
     switch (version)
     {
         case 0:
+        case 1:
         {
             Params p;
             in >> p.pillar_size >> p.origin_x >> p.origin_y >> p.height_resolution;
-            insertionOptions.readFromStream(in);
+            insertionOptions.readFromStream(in, version);
             in >> genericMapParams;
             PillarGrid g(p);  // validates the geometry
             grid_ = std::move(g);

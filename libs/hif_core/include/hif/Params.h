@@ -68,6 +68,18 @@ struct Params
      *  stays one interval at any range. */
     double beam_spacing_deg = 0.42;
 
+    /** See-through misses (ours; 0 = off, the paper): after each scan, every interval of a
+     *  pillar within this horizontal distance of the sensor (metres) that the scan did not hit
+     *  gets a miss (Eq. 13) when a beam passed through it: in the scan's range image, in the
+     *  direction of the pillar's centre and between the interval's bottom and top, some return
+     *  lies farther than the pillar by more than see_through_margin and none lies within the
+     *  margin of it. Gives "empty" evidence to pillars that no later return falls in (far
+     *  cars on open roads, whose vacated pillars are never hit again). */
+    double see_through_range = 0.0;
+    /** Distance, metres, that a return must lie beyond a pillar to count as passing through
+     *  it; returns within it of the pillar veto the miss. */
+    double see_through_margin = 2.5;
+
     /** A point is static when the interval it falls in has P(static) >= this. */
     double static_threshold = 0.5;
 

@@ -97,7 +97,8 @@ public:
     /** Integrates one scan. `points` are in the sensor frame, `sensor_to_world` places them in
      *  the world frame (the frame of the grid). Every pillar that receives at least one point
      *  is updated (Eq. 8-18) or created; other pillars are untouched. The same as
-     *  bucketScan(), buildIntervals(), mergeScan() in a row. */
+     *  bucketScan(), buildIntervals(), mergeScan() in a row, then the see-through misses when
+     *  Params::see_through_range > 0. */
     InsertStats insertScan(const PointsView& points, const Eigen::Isometry3d& sensor_to_world =
                                                          Eigen::Isometry3d::Identity());
 
@@ -180,7 +181,14 @@ private:
     ScanPillars scan_;
     std::vector<Pillar*> targets_;
     std::vector<Interval> scratch_;
+    std::vector<float> see_through_image_;
+    std::vector<uint8_t> see_through_hit_;
 
+    /** See-through misses (Params::see_through_range > 0), after mergeScan(): a miss (Eq. 13)
+     *  for every interval of a pillar the scan did not hit, within see_through_range of the
+     *  sensor, that a beam of the scan passed through. Serial. */
+    void seeThroughMisses(const PointsView& pts, const Eigen::Isometry3d& T,
+                          const ScanPillars& scan);
     /** Log-odds of P(static) at a world point (logit(p_empty_init) where nothing is known). */
     [[nodiscard]] double logOddsAt(double x, double y, double z) const;
 

@@ -114,6 +114,12 @@ public:
         /** Range-adaptive intervals: vertical beam spacing, degrees; 0 = the paper's fixed
          *  merge_gap/interval_padding (ours; Default: 0.42, the HDL-64E) */
         double beam_spacing_deg = Params().beam_spacing_deg;
+        /** See-through misses within this horizontal distance of the sensor, m; 0 = off, the
+         *  paper (ours; Default: 0) */
+        double see_through_range = Params().see_through_range;
+        /** A return this far beyond a pillar passed through it; nearer ones veto, m (Default:
+         *  2.5) */
+        double see_through_margin = Params().see_through_margin;
         /** Static when P(static) >= this (Default: 0.5) */
         double static_threshold = Params().static_threshold;
         /** Bound on intervals per pillar (Default: 16) */
@@ -129,7 +135,8 @@ public:
         void saveToConfigFile(mrpt::config::CConfigFileBase& target,
                               const std::string& section) const override;
         void writeToStream(mrpt::serialization::CArchive& out) const;
-        void readFromStream(mrpt::serialization::CArchive& in);
+        /** Reads what writeToStream() wrote; `version` is the map's serialization version. */
+        void readFromStream(mrpt::serialization::CArchive& in, uint8_t version);
     };
     TInsertionOptions insertionOptions;
 
