@@ -368,8 +368,10 @@ TEST_P(RealKitti, OfflineCleaningMeetsTheFloors)
     EXPECT_GE(s["AA"].get<double>(), aa_floor) << r.output;
 }
 
-// Floors a little under what the shipped kitti.ini measures (03: SA 98.00; 04: SA 98.56,
-// AA 95.08), so that a regression fails and noise does not.
+// Floors a little under what the shipped kitti.ini measures (01: SA 98.91, AA 95.20 (86.36
+// without see-through misses); 03: SA 97.98; 04: SA 98.53, AA 95.12), so that a regression
+// fails and noise does not. The results are deterministic; the margin is for later changes.
 INSTANTIATE_TEST_SUITE_P(Sequences, RealKitti,
-                         ::testing::Values(std::make_tuple("03", 97.8, 98.0),
+                         ::testing::Values(std::make_tuple("01", 98.6, 94.8),
+                                           std::make_tuple("03", 97.8, 98.0),
                                            std::make_tuple("04", 98.3, 94.8)));
