@@ -156,6 +156,7 @@ void BM_InsertOfflineConfig(benchmark::State& state)
     prm.see_through_range = 40.0;
     prm.see_through_margin = 2.5;
     hif::PillarGrid g(prm);
+    g.setThreads(static_cast<std::size_t>(state.range(0)));
     std::size_t k = 0;
     for (auto _ : state)
     {
@@ -169,7 +170,11 @@ void BM_InsertOfflineConfig(benchmark::State& state)
         }
     }
 }
-BENCHMARK(BM_InsertOfflineConfig)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_InsertOfflineConfig)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond);
 
 /** The steps of one insertion, each timed alone on the same scans and the same growing map:
  *  0 = quantization and bucketing, 1 = interval construction (sort heights, spans), 2 = merge

@@ -266,3 +266,46 @@ TEST(AgainstReference, DenseTallAndFarScansOnOneAndThreeThreads)
             ASSERT_EQ(dyn1[i] == 0, grid.isStatic(x[i], y[i], z[i])) << "point " << i;
     }
 }
+
+// See-through misses split pillars over threads: 1 and 3 threads must give the same map.
+TEST(SeeThroughMisses, SameMapOnOneAndThreeThreads)
+{
+    Params prm;
+    prm.see_through_range = 30.0;
+    PillarGrid g1(prm), g3(prm), off{Params()};
+    g3.setThreads(3);
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int scan = 0; scan < 8; ++scan)
+    {
+        // Ground near the sensor only (far ground returns are sparse), a wall at 25 m all
+        // around, and a box that moves 2 m between scans.
+        std::vector<float> x, y, z;
+        auto add = [&](double px, double py, double pz)
+        {
+            x.push_back(float(px));
+            y.push_back(float(py));
+            z.push_back(float(pz));
+        };
+        for (int i = 0; i < 20000; ++i)
+        {
+            const double az = 2 * M_PI * u(rng);
+            const double r = 6.0 * std::sqrt(u(rng));
+            add(r * std::cos(az), r * std::sin(az), -1.7 + 0.02 * u(rng));
+            add(25.0 * std::cos(az), 25.0 * std::sin(az), -1.7 + 4.0 * u(rng));
+        }
+        for (int i = 0; i < 2000; ++i)
+            add(8.0 + scan * 2.0 + u(rng), -3.0 + u(rng), -1.5 + 1.3 * u(rng));
+        const PointsView view{x.data(), y.data(), z.data(), x.size()};
+        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+        T.translation() = Eigen::Vector3d(0.3 * scan, 0.1 * scan, 0.0);
+        g1.insertScan(view, T);
+        g3.insertScan(view, T);
+        off.insertScan(view, T);
+        ASSERT_TRUE(g1 == g3) << "3 threads differ from 1 after scan " << scan;
+    }
+    // The misses did something: a box position left behind, which no later return falls in,
+    // is empty only with them.
+    EXPECT_FALSE(g1.isStatic(8.5, -2.5, -1.0));
+    EXPECT_TRUE(off.isStatic(8.5, -2.5, -1.0));
+}

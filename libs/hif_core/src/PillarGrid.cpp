@@ -6,6 +6,7 @@
 #include "hif/PillarGrid.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -108,7 +109,12 @@ void PillarGrid::setParams(const Params& params)
 
 struct PillarGrid::Arena
 {
-    explicit Arena(std::size_t threads) : arena(static_cast<int>(threads)) {}
+    // No more threads than TBB will run (it warns and ignores the rest).
+    explicit Arena(std::size_t threads)
+        : arena(std::min(static_cast<int>(std::min<std::size_t>(threads, 1024)),
+                         tbb::info::default_concurrency()))
+    {
+    }
     tbb::task_arena arena;
 };
 
@@ -210,7 +216,7 @@ void PillarGrid::seeThroughMisses(const PointsView& pts, const Eigen::Isometry3d
     }
 
     // The map's pillars within see_through_range of the sensor that the scan did not hit.
-    const double ps = params_.pillar_size, res = params_.height_resolution;
+    const double ps = params_.pillar_size;
     const double range = params_.see_through_range, margin = params_.see_through_margin;
     const Eigen::Vector3d t = T.translation();
     const Eigen::Matrix3d Rt = T.linear().transpose();
@@ -229,67 +235,82 @@ void PillarGrid::seeThroughMisses(const PointsView& pts, const Eigen::Isometry3d
         if (a >= 0 && a < side && b >= 0 && b < side)
             hit[static_cast<std::size_t>(a * side + b)] = 1;
     }
-    for (int64_t a = 0; a < side; ++a)
-        for (int64_t b = 0; b < side; ++b)
+    // Rows of the window are independent (each pillar is in one row): split them over threads.
+    const Eigen::Vector3d up = Rt.col(2);  // world z axis in the sensor frame
+    forRanges(static_cast<std::size_t>(side), 8,
+              [&](std::size_t a0, std::size_t a1)
+              {
+                  for (auto a = static_cast<int64_t>(a0); a < static_cast<int64_t>(a1); ++a)
+                      for (int64_t b = 0; b < side; ++b)
+                      {
+                          const int64_t m = cm + a - w, n = cn + b - w;
+                          if (hit[static_cast<std::size_t>(a * side + b)] || m < INT32_MIN ||
+                              m > INT32_MAX || n < INT32_MIN || n > INT32_MAX)
+                              continue;
+                          const PillarIndex idx{static_cast<int32_t>(m), static_cast<int32_t>(n)};
+                          const auto it = pillars_.find(packKey(idx));
+                          if (it == pillars_.end()) continue;
+                          const double cx = params_.origin_x + (idx.m + 0.5) * ps;
+                          const double cy = params_.origin_y + (idx.n + 0.5) * ps;
+                          const double dx = cx - t.x(), dy = cy - t.y();
+                          if (dx * dx + dy * dy > range * range) continue;
+                          // The pillar's axis in the sensor frame: base + up * z.
+                          const Eigen::Vector3d base = Rt * Eigen::Vector3d(dx, dy, -t.z());
+                          seeThroughPillar(it->second, base, up, img, margin);
+                      }
+              });
+}
+
+void PillarGrid::seeThroughPillar(Pillar& pil, const Eigen::Vector3d& base,
+                                  const Eigen::Vector3d& up, const std::vector<float>& img,
+                                  double margin) const
+{
+    const double res = params_.height_resolution;
+    bool changed = false;
+    for (Interval& iv : pil.intervals)
+    {
+        // The beams in the pillar centre's direction between the interval's bottom and top:
+        // one that returned beyond it (by more than the margin) passed through it; one that
+        // returned near it vetoes (something is there).
+        const Eigen::Vector3d lo = base + up * (iv.lo * res);
+        const double hi_z = base.z() + up.z() * (iv.hi * res);
+        const double d = std::sqrt(lo.x() * lo.x() + lo.y() * lo.y());
+        if (d == 0.0) continue;
+        const double paz = pseudoAzimuth(lo.x(), lo.y());
+        const int k0 = imageCell(paz, std::max(lo.z() / d, kTanMin));
+        const int k1 = imageCell(paz, std::min(hi_z / d, kTanMax - 1e-12));
+        if (k0 < 0 || k1 < 0) continue;
+        bool through = false, veto = false;
+        for (int k = k0; k <= k1 && !veto; k += kImageCols)
         {
-            const int64_t m = cm + a - w, n = cn + b - w;
-            if (hit[static_cast<std::size_t>(a * side + b)] || m < INT32_MIN || m > INT32_MAX ||
-                n < INT32_MIN || n > INT32_MAX)
-                continue;
-            const PillarIndex idx{static_cast<int32_t>(m), static_cast<int32_t>(n)};
-            const auto it = pillars_.find(packKey(idx));
-            if (it == pillars_.end()) continue;
-            const double cx = params_.origin_x + (idx.m + 0.5) * ps;
-            const double cy = params_.origin_y + (idx.n + 0.5) * ps;
-            if (std::hypot(cx - t.x(), cy - t.y()) > range) continue;
-            Pillar& pil = it->second;
-            bool changed = false;
-            for (Interval& iv : pil.intervals)
-            {
-                // The beams in the pillar centre's direction between the interval's bottom and
-                // top: one that returned beyond it (by more than the margin) passed through it;
-                // one that returned near it vetoes (something is there).
-                const Eigen::Vector3d lo = Rt * (Eigen::Vector3d(cx, cy, iv.lo * res) - t);
-                const Eigen::Vector3d hi = Rt * (Eigen::Vector3d(cx, cy, iv.hi * res) - t);
-                const double d = std::hypot(lo.x(), lo.y());
-                if (d == 0.0) continue;
-                const double paz = pseudoAzimuth(lo.x(), lo.y());
-                const int k0 = imageCell(paz, std::max(lo.z() / d, kTanMin));
-                const int k1 = imageCell(paz, std::min(hi.z() / d, kTanMax - 1e-12));
-                if (k0 < 0 || k1 < 0) continue;
-                bool through = false, veto = false;
-                for (int k = k0; k <= k1 && !veto; k += kImageCols)
-                {
-                    const float r = img[static_cast<std::size_t>(k)];
-                    if (!std::isfinite(r)) continue;  // no return: no evidence
-                    const double tan_el = kTanMin + (k / kImageCols + 0.5) * kTanRes;
-                    const double dist = d * std::sqrt(1.0 + tan_el * tan_el);  // to the axis
-                    if (r > dist + margin)
-                        through = true;
-                    else if (r > dist - margin)
-                        veto = true;
-                    // else: occluded by something closer, no evidence
-                }
-                if (through && !veto)
-                {
-                    iv.logodds = model_.clamp(iv.logodds + model_.miss);  // Eq. 13
-                    changed = true;
-                }
-            }
-            if (changed)  // restore the invariant: touching intervals never share a log-odds
-            {
-                auto& v = pil.intervals;
-                std::size_t o = 0;
-                for (std::size_t k = 1; k < v.size(); ++k)
-                {
-                    if (v[o].hi == v[k].lo && v[o].logodds == v[k].logodds)
-                        v[o].hi = v[k].hi;
-                    else
-                        v[++o] = v[k];
-                }
-                if (!v.empty()) v.resize(o + 1);
-            }
+            const float r = img[static_cast<std::size_t>(k)];
+            if (!std::isfinite(r)) continue;  // no return: no evidence
+            const double tan_el = kTanMin + (k / kImageCols + 0.5) * kTanRes;
+            const double dist = d * std::sqrt(1.0 + tan_el * tan_el);  // to the pillar's axis
+            if (r > dist + margin)
+                through = true;
+            else if (r > dist - margin)
+                veto = true;
+            // else: occluded by something closer, no evidence
         }
+        if (through && !veto)
+        {
+            iv.logodds = model_.clamp(iv.logodds + model_.miss);  // Eq. 13
+            changed = true;
+        }
+    }
+    if (!changed) return;
+    // Restore the invariant: touching intervals never share a log-odds.
+    auto& v = pil.intervals;
+    std::size_t o = 0;
+    for (std::size_t k = 1; k < v.size(); ++k)
+    {
+        if (v[o].hi == v[k].lo && v[o].logodds == v[k].logodds)
+            v[o].hi = v[k].hi;
+        else
+            v[++o] = v[k];
+    }
+    if (!v.empty()) v.resize(o + 1);
 }
 
 void PillarGrid::bucketScan(const PointsView& pts, const Eigen::Isometry3d& T, ScanPillars& out,

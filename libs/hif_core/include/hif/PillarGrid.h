@@ -137,8 +137,9 @@ public:
      *  height_resolution) while the grid is not empty. */
     void setParams(const Params& params);
 
-    /** Threads used by insertion and classification (default 1). Work is split by pillar,
-     *  and pillars are independent, so every thread count gives the same map bit for bit. */
+    /** Threads used by insertion and classification (default 1; more than the machine's
+     *  cores run as that many). Work is split by pillar, and pillars are independent, so every
+     *  thread count gives the same map bit for bit. */
     void setThreads(std::size_t threads);
     [[nodiscard]] std::size_t threads() const { return threads_; }
 
@@ -186,9 +187,13 @@ private:
 
     /** See-through misses (Params::see_through_range > 0), after mergeScan(): a miss (Eq. 13)
      *  for every interval of a pillar the scan did not hit, within see_through_range of the
-     *  sensor, that a beam of the scan passed through. Serial. */
+     *  sensor, that a beam of the scan passed through. Pillars are split over threads. */
     void seeThroughMisses(const PointsView& pts, const Eigen::Isometry3d& T,
                           const ScanPillars& scan);
+    /** The see-through test of one pillar, whose axis is base + up * z in the sensor frame,
+     *  against the scan's range image `img`. */
+    void seeThroughPillar(Pillar& pil, const Eigen::Vector3d& base, const Eigen::Vector3d& up,
+                          const std::vector<float>& img, double margin) const;
     /** Log-odds of P(static) at a world point (logit(p_empty_init) where nothing is known). */
     [[nodiscard]] double logOddsAt(double x, double y, double z) const;
 
