@@ -146,14 +146,14 @@ void BM_Insert(benchmark::State& state)
 BENCHMARK(BM_Insert)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 /** BM_Insert with the offline configuration (share/hif/config/kitti.ini: see-through misses
- *  within 40 m, p_empty_init 0.42). The difference to BM_Insert/threads:1 is the cost of the
+ *  within 35 m, p_empty_init 0.42). The difference to BM_Insert/threads:1 is the cost of the
  *  see-through misses. */
 void BM_InsertOfflineConfig(benchmark::State& state)
 {
     if (!haveScans(state)) return;
     hif::Params prm;
     prm.p_empty_init = 0.42;
-    prm.see_through_range = 40.0;
+    prm.see_through_range = 35.0;
     prm.see_through_margin = 2.5;
     hif::PillarGrid g(prm);
     g.setThreads(static_cast<std::size_t>(state.range(0)));

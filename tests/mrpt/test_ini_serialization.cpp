@@ -275,7 +275,7 @@ TEST(CHeightIntervalMapIni, ShippedKittiConfigsLoadTheDocumentedDefaults)
         if (std::string(name) == "kitti.ini")
         {
             expected.p_empty_init = 0.42;
-            expected.see_through_range = 40.0;
+            expected.see_through_range = 35.0;
             expected.see_through_margin = 2.5;
         }
         EXPECT_EQ(map->params(), expected) << name;
