@@ -150,7 +150,12 @@ void capIntervals(std::vector<Interval>& iv, std::size_t max_intervals)
         a.hi = b.hi;
         iv.erase(iv.begin() + static_cast<std::ptrdiff_t>(best) + 1);
     }
-    // A merge can make a new neighbour pair touch with equal log-odds: restore the invariant.
+    // A merge can make a new neighbour pair touch with equal log-odds.
+    joinEqualNeighbours(iv);
+}
+
+void joinEqualNeighbours(std::vector<Interval>& iv)
+{
     std::size_t w = 0;
     for (std::size_t k = 1; k < iv.size(); ++k)
     {

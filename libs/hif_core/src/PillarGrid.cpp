@@ -299,18 +299,7 @@ void PillarGrid::seeThroughPillar(Pillar& pil, const Eigen::Vector3d& base,
             changed = true;
         }
     }
-    if (!changed) return;
-    // Restore the invariant: touching intervals never share a log-odds.
-    auto& v = pil.intervals;
-    std::size_t o = 0;
-    for (std::size_t k = 1; k < v.size(); ++k)
-    {
-        if (v[o].hi == v[k].lo && v[o].logodds == v[k].logodds)
-            v[o].hi = v[k].hi;
-        else
-            v[++o] = v[k];
-    }
-    if (!v.empty()) v.resize(o + 1);
+    if (changed) joinEqualNeighbours(pil.intervals);
 }
 
 void PillarGrid::bucketScan(const PointsView& pts, const Eigen::Isometry3d& T, ScanPillars& out,
@@ -322,7 +311,6 @@ void PillarGrid::bucketScan(const PointsView& pts, const Eigen::Isometry3d& T, S
     const double inv_xy = 1.0 / params_.pillar_size;
     const double inv_z = 1.0 / params_.height_resolution;
     out.sensor = t;
-    out.points_in = pts.size;
     out.top_slope_sq = -std::numeric_limits<double>::infinity();
     out.tmp_m.resize(pts.size);
     out.tmp_n.resize(pts.size);

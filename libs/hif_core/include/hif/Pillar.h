@@ -109,6 +109,10 @@ void updatePillar(Pillar& g, const Span* t, std::size_t nt, const LogOddsModel& 
  *  spans both, with the length-weighted mean of their log-odds. */
 void capIntervals(std::vector<Interval>& iv, std::size_t max_intervals);
 
+/** Joins touching neighbours of equal log-odds (lossless), restoring the invariant on Pillar
+ *  after log-odds changed in place. */
+void joinEqualNeighbours(std::vector<Interval>& iv);
+
 /** Interval of `p` containing height cell `z`, or nullptr. */
 [[nodiscard]] const Interval* findInterval(const Pillar& p, int32_t z);
 

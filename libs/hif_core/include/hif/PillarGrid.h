@@ -75,7 +75,6 @@ struct ScanPillars
     /** Top beam's elevation as the largest z * |z| / (x^2 + y^2) of the points farther than
      *  2 m horizontally (sensor frame; monotone in z / range, no square root); -inf if none. */
     double top_slope_sq = -std::numeric_limits<double>::infinity();
-    std::size_t points_in = 0;
     std::size_t points_invalid = 0;
 
     [[nodiscard]] std::size_t pillarCount() const { return keys.size(); }
