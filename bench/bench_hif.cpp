@@ -5,6 +5,8 @@
  *         insertion (the map growing scan by scan), classification, and the 40-scan offline run.
  */
 #include <benchmark/benchmark.h>
+#include <mrpt/config/CConfigFile.h>
+#include <mrpt/maps/CMultiMetricMap.h>
 #include <mrpt/maps/CPointsMapXYZI.h>
 #include <mrpt/obs/CObservationPointCloud.h>
 
@@ -123,13 +125,10 @@ void BM_LowerBound(benchmark::State& state)
 }
 BENCHMARK(BM_LowerBound)->Unit(benchmark::kMillisecond);
 
-/** Insertion of the scans in sequence, the map growing; the map restarts empty after the last
- *  scan (not timed). Argument: threads. */
-void BM_Insert(benchmark::State& state)
+/** Inserts the scans in sequence into `g`, the map growing; the map restarts empty after the
+ *  last scan (not timed). */
+void insertInSequence(benchmark::State& state, hif::PillarGrid& g)
 {
-    if (!haveScans(state)) return;
-    hif::PillarGrid g;
-    g.setThreads(static_cast<std::size_t>(state.range(0)));
     std::size_t k = 0;
     for (auto _ : state)
     {
@@ -143,32 +142,30 @@ void BM_Insert(benchmark::State& state)
         }
     }
 }
+
+/** Insertion with the default parameters (those of kitti-online.ini). Argument: threads. */
+void BM_Insert(benchmark::State& state)
+{
+    if (!haveScans(state)) return;
+    hif::PillarGrid g;
+    g.setThreads(static_cast<std::size_t>(state.range(0)));
+    insertInSequence(state, g);
+}
 BENCHMARK(BM_Insert)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
-/** BM_Insert with the offline configuration (share/hif/config/kitti.ini: see-through misses
- *  within 35 m, p_empty_init 0.42). The difference to BM_Insert/threads:1 is the cost of the
- *  see-through misses. */
+/** Insertion with the offline configuration, read from share/hif/config/kitti.ini (see-through
+ *  misses, p_empty_init 0.42). The difference to BM_Insert is the cost of the see-through
+ *  misses. Argument: threads. */
 void BM_InsertOfflineConfig(benchmark::State& state)
 {
     if (!haveScans(state)) return;
-    hif::Params prm;
-    prm.p_empty_init = 0.42;
-    prm.see_through_range = 35.0;
-    prm.see_through_margin = 2.5;
-    hif::PillarGrid g(prm);
+    mrpt::config::CConfigFile cfg(HIF_SHARE_DIR "/config/kitti.ini");
+    mrpt::maps::TSetOfMetricMapInitializers inits;
+    inits.loadFromConfigFile(cfg, "map");
+    const mrpt::maps::CMultiMetricMap maps(inits);
+    hif::PillarGrid g(maps.mapByClass<hif::CHeightIntervalMap>()->params());
     g.setThreads(static_cast<std::size_t>(state.range(0)));
-    std::size_t k = 0;
-    for (auto _ : state)
-    {
-        benchmark::DoNotOptimize(g.insertScan(scans().view(k), scans().poses[k]));
-        if (++k == scans().size())
-        {
-            state.PauseTiming();
-            k = 0;
-            g.clear();
-            state.ResumeTiming();
-        }
-    }
+    insertInSequence(state, g);
 }
 BENCHMARK(BM_InsertOfflineConfig)
     ->ArgName("threads")

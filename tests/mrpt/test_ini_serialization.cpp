@@ -164,47 +164,33 @@ TEST(CHeightIntervalMapIni, OptionsSaveLoadRoundTrip)
     EXPECT_NE(m1.params(), CHeightIntervalMap().params());
 }
 
-TEST(CHeightIntervalMapIni, BadValuesAreRejectedWithSectionAndField)
+namespace
+{
+/** kIni with `from` replaced by `to` must be rejected, naming `field` and `section`. */
+void expectRejected(const std::string& from, const std::string& to, const std::string& field,
+                    const std::string& section)
 {
     std::string ini = kIni;
-    ini.replace(ini.find("alpha=0.7"), 9, "alpha=0.3");
+    ini.replace(ini.find(from), from.size(), to);
     try
     {
         initializersFrom(ini);
-        FAIL() << "alpha=0.3 accepted";
+        ADD_FAILURE() << to << " accepted";
     }
     catch (const std::exception& e)
     {
         const std::string msg = e.what();
-        EXPECT_NE(msg.find("alpha"), std::string::npos) << msg;
-        EXPECT_NE(msg.find("map_CHeightIntervalMap_00_insertOpts"), std::string::npos) << msg;
+        EXPECT_NE(msg.find(field), std::string::npos) << msg;
+        EXPECT_NE(msg.find(section), std::string::npos) << msg;
     }
-    std::string ini2 = kIni;
-    ini2.replace(ini2.find("pillar_size=0.75"), 16, "pillar_size=-1.0");
-    try
-    {
-        initializersFrom(ini2);
-        FAIL() << "pillar_size=-1 accepted";
-    }
-    catch (const std::exception& e)
-    {
-        const std::string msg = e.what();
-        EXPECT_NE(msg.find("pillar_size"), std::string::npos) << msg;
-        EXPECT_NE(msg.find("creationOpts"), std::string::npos) << msg;
-    }
-    std::string ini3 = kIni;
-    ini3.replace(ini3.find("threads=2"), 9, "threads=0");
-    try
-    {
-        initializersFrom(ini3);
-        FAIL() << "threads=0 accepted";
-    }
-    catch (const std::exception& e)
-    {
-        const std::string msg = e.what();
-        EXPECT_NE(msg.find("threads"), std::string::npos) << msg;
-        EXPECT_NE(msg.find("insertOpts"), std::string::npos) << msg;
-    }
+}
+}  // namespace
+
+TEST(CHeightIntervalMapIni, BadValuesAreRejectedWithSectionAndField)
+{
+    expectRejected("alpha=0.7", "alpha=0.3", "alpha", "map_CHeightIntervalMap_00_insertOpts");
+    expectRejected("pillar_size=0.75", "pillar_size=-1.0", "pillar_size", "creationOpts");
+    expectRejected("threads=2", "threads=0", "threads", "insertOpts");
 }
 
 TEST(CHeightIntervalMapSerialization, RoundTripThroughClassFactoryIsExact)
