@@ -175,12 +175,13 @@ BENCHMARK(BM_InsertOfflineConfig)
 
 /** The steps of one insertion, each timed alone on the same scans and the same growing map:
  *  0 = quantization and bucketing, 1 = interval construction (sort heights, spans), 2 = merge
- *  into the map (find or create pillars, Bayes update). */
+ *  into the map (find or create pillars, Bayes update). Arguments: step, threads. */
 void BM_InsertStep(benchmark::State& state)
 {
     if (!haveScans(state)) return;
     const auto step = state.range(0);
     hif::PillarGrid g;
+    g.setThreads(static_cast<std::size_t>(state.range(1)));
     hif::ScanPillars sp;
     std::size_t k = 0, pillars = 0;
     for (auto _ : state)
@@ -219,7 +220,10 @@ void BM_InsertStep(benchmark::State& state)
     }
     state.counters["pillars/scan"] = double(pillars) / double(state.iterations());
 }
-BENCHMARK(BM_InsertStep)->ArgName("step")->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_InsertStep)
+    ->ArgNames({"step", "threads"})
+    ->ArgsProduct({{0, 1, 2}, {1, 2}})
+    ->Unit(benchmark::kMillisecond);
 
 /** BM_Insert through MRPT: CHeightIntervalMap::insertObservation() of a CObservationPointCloud
  *  at a CPose3D, what rawlog tools and SLAM call. The difference to BM_Insert is the adapter. */

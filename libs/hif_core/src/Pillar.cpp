@@ -68,14 +68,24 @@ void updatePillar(Pillar& g, const Span* t, std::size_t nt, const LogOddsModel& 
     // LHP (Eq. 15): b_base is the lowest height the scan saw in this pillar.
     const int32_t base = nt > 0 ? t[0].lo : std::numeric_limits<int32_t>::max();
 
-    out.clear();
+    // The sweep below yields at most 2 (ng + nt) - 1 pieces. They are written field by field
+    // through a pointer: building each Interval as a temporary and copying it costs a
+    // store-forwarding stall per piece.
+    out.resize(2 * (ng + nt));
+    Interval* const o = out.data();
+    std::size_t count = 0;
     auto emit = [&](int32_t lo, int32_t hi, float l)
     {
         l = model.clamp(l);  // Eq. 17-18
-        if (!out.empty() && out.back().hi == lo && out.back().logodds == l)
-            out.back().hi = hi;  // lossless: both halves carry the same belief
+        if (count > 0 && o[count - 1].hi == lo && o[count - 1].logodds == l)
+            o[count - 1].hi = hi;  // lossless: both halves carry the same belief
         else
-            out.push_back({lo, hi, l});
+        {
+            o[count].lo = lo;
+            o[count].hi = hi;
+            o[count].logodds = l;
+            ++count;
+        }
     };
 
     // Sweep over the sorted endpoints of both sets (Eq. 9): between two consecutive endpoints
@@ -118,8 +128,10 @@ void updatePillar(Pillar& g, const Span* t, std::size_t nt, const LogOddsModel& 
         // neither: not covered by any observation, discarded.
         x = next;
     }
-    if (out.size() > max_intervals) capIntervals(out, max_intervals);
-    g.intervals.swap(out);
+    out.resize(count);
+    if (count > max_intervals) capIntervals(out, max_intervals);
+    // A copy, not a swap: the pillar keeps its own storage, so steady state allocates nothing.
+    g.intervals.assign(out.begin(), out.end());
     g.logodds_empty = model.clamp(empty_prior + model.miss);  // Eq. 8
     g.seen_top = std::max(seen_top, ceiling);
 }

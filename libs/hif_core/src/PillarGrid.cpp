@@ -10,9 +10,18 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+// Pass 1 of bucketScan() has an AVX version, chosen at run time, on x86-64 with GCC or Clang.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define HIF_X86_AVX 1
+#include <immintrin.h>
+#else
+#define HIF_X86_AVX 0
+#endif
+
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -302,110 +311,319 @@ void PillarGrid::seeThroughPillar(Pillar& pil, const Eigen::Vector3d& base,
     if (changed) joinEqualNeighbours(pil.intervals);
 }
 
+namespace
+{
+/** What pass 1 of bucketScan() found in one chunk of input points. */
+struct ChunkSummary
+{
+    std::size_t valid = 0;  ///< valid points, repeats included
+    std::size_t kept = 0;   ///< valid points that are not repeats
+    int32_t m_min = std::numeric_limits<int32_t>::max();
+    int32_t m_max = std::numeric_limits<int32_t>::min();
+    int32_t n_min = std::numeric_limits<int32_t>::max();
+    int32_t n_max = std::numeric_limits<int32_t>::min();
+    double top_slope_sq = -std::numeric_limits<double>::infinity();  ///< see ScanPillars
+};
+
+/** Extremes over the valid points of pass 1, before floor() (which is monotone).  */
+struct Extremes
+{
+    double m_lo = std::numeric_limits<double>::infinity();
+    double m_hi = -std::numeric_limits<double>::infinity();
+    double n_lo = std::numeric_limits<double>::infinity();
+    double n_hi = -std::numeric_limits<double>::infinity();
+    double top = -std::numeric_limits<double>::infinity();  ///< largest z |z| / r^2
+};
+
+/** Pass 1 of bucketScan() over input points [i0, i1): transform, quantize (Eq. 1, as
+ *  quantize() without std::optional) and write the valid points that are not repeats to
+ *  m/n/z[i0...] (and their input index to src), with their bounding box and the top beam's
+ *  elevation. Every value it needs is a member or a local, so loops keep them in registers. */
+struct QuantizeChunk
+{
+    double r00, r01, r02, r10, r11, r12, r20, r21, r22;
+    double tx, ty, tz;
+    double ox, oy, inv_xy, inv_z;
+
+    QuantizeChunk(const Eigen::Matrix3d& R, const Eigen::Vector3d& t, const Params& p)
+        : r00(R(0, 0)),
+          r01(R(0, 1)),
+          r02(R(0, 2)),
+          r10(R(1, 0)),
+          r11(R(1, 1)),
+          r12(R(1, 2)),
+          r20(R(2, 0)),
+          r21(R(2, 1)),
+          r22(R(2, 2)),
+          tx(t.x()),
+          ty(t.y()),
+          tz(t.z()),
+          ox(p.origin_x),
+          oy(p.origin_y),
+          inv_xy(1.0 / p.pillar_size),
+          inv_z(1.0 / p.height_resolution)
+    {
+    }
+
+    static constexpr double kMinR2 = kMinRangeForElevation * kMinRangeForElevation;
+
+    /** Quantizes points [0, n) of x/y/z into m/n/z (left unset where ok[j] == 0: non-finite or
+     *  outside the int32 range) and widens `e`; returns the count of valid points. */
+    std::size_t quantizeScalar(const float* x, const float* y, const float* z, std::size_t n,
+                               int32_t* bm, int32_t* bn, int32_t* bz, uint8_t* ok,
+                               Extremes& e) const
+    {
+        std::size_t valid = 0;
+        for (std::size_t j = 0; j < n; ++j)
+        {
+            const double sx = x[j], sy = y[j], sz = z[j];
+            const double fm = (r00 * sx + r01 * sy + r02 * sz + tx - ox) * inv_xy;
+            const double fn = (r10 * sx + r11 * sy + r12 * sz + ty - oy) * inv_xy;
+            const double fz = (r20 * sx + r21 * sy + r22 * sz + tz) * inv_z;
+            ok[j] = floorToInt32(fm, bm[j]) && floorToInt32(fn, bn[j]) && floorToInt32(fz, bz[j]);
+            if (!ok[j]) continue;
+            ++valid;
+            e.m_lo = std::min(e.m_lo, fm);
+            e.m_hi = std::max(e.m_hi, fm);
+            e.n_lo = std::min(e.n_lo, fn);
+            e.n_hi = std::max(e.n_hi, fn);
+            const double r2 = sx * sx + sy * sy;
+            if (r2 > kMinR2) e.top = std::max(e.top, sz * std::abs(sz) / std::max(r2, kMinR2));
+        }
+        return valid;
+    }
+
+    /** quantizeScalar(), with AVX when the CPU has it (chosen at run time; the same
+     *  operations in the same order, without fused multiply-add, so the same bits). */
+    std::size_t quantizeBlock(const float* x, const float* y, const float* z, std::size_t n,
+                              int32_t* bm, int32_t* bn, int32_t* bz, uint8_t* ok, Extremes& e) const
+    {
+#if HIF_X86_AVX
+        static const bool has_avx = __builtin_cpu_supports("avx");
+        if (has_avx) return quantizeAvx(x, y, z, n, bm, bn, bz, ok, e);
+#endif
+        return quantizeScalar(x, y, z, n, bm, bn, bz, ok, e);
+    }
+
+#if HIF_X86_AVX
+    /** quantizeScalar() four points at a time. */
+    __attribute__((target("avx"))) std::size_t quantizeAvx(const float* x, const float* y,
+                                                           const float* z, std::size_t n,
+                                                           int32_t* bm, int32_t* bn, int32_t* bz,
+                                                           uint8_t* ok, Extremes& e) const
+    {
+        const __m256d a00 = _mm256_set1_pd(r00), a01 = _mm256_set1_pd(r01),
+                      a02 = _mm256_set1_pd(r02), a10 = _mm256_set1_pd(r10),
+                      a11 = _mm256_set1_pd(r11), a12 = _mm256_set1_pd(r12),
+                      a20 = _mm256_set1_pd(r20), a21 = _mm256_set1_pd(r21),
+                      a22 = _mm256_set1_pd(r22);
+        const __m256d vtx = _mm256_set1_pd(tx), vty = _mm256_set1_pd(ty), vtz = _mm256_set1_pd(tz),
+                      vox = _mm256_set1_pd(ox), voy = _mm256_set1_pd(oy),
+                      vinv_xy = _mm256_set1_pd(inv_xy), vinv_z = _mm256_set1_pd(inv_z);
+        // floor(v) fits in int32 iff -2^31 <= v < 2^31 (false for NaN).
+        const __m256d lo = _mm256_set1_pd(-2147483648.0), hi = _mm256_set1_pd(2147483648.0);
+        const __m256d inf = _mm256_set1_pd(std::numeric_limits<double>::infinity());
+        const __m256d ninf = _mm256_set1_pd(-std::numeric_limits<double>::infinity());
+        const __m256d abs_mask = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7fffffffffffffffLL));
+        const __m256d min_r2 = _mm256_set1_pd(kMinR2);
+        __m256d m_lo = inf, m_hi = ninf, n_lo = inf, n_hi = ninf, top = ninf;
+        std::size_t valid = 0, j = 0;
+        for (; j + 4 <= n; j += 4)
+        {
+            const __m256d sx = _mm256_cvtps_pd(_mm_loadu_ps(x + j));
+            const __m256d sy = _mm256_cvtps_pd(_mm_loadu_ps(y + j));
+            const __m256d sz = _mm256_cvtps_pd(_mm_loadu_ps(z + j));
+            // ((r0 sx + r1 sy) + r2 sz) + t, as the scalar expression.
+            const __m256d wx = _mm256_add_pd(
+                _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(a00, sx), _mm256_mul_pd(a01, sy)),
+                              _mm256_mul_pd(a02, sz)),
+                vtx);
+            const __m256d wy = _mm256_add_pd(
+                _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(a10, sx), _mm256_mul_pd(a11, sy)),
+                              _mm256_mul_pd(a12, sz)),
+                vty);
+            const __m256d wz = _mm256_add_pd(
+                _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(a20, sx), _mm256_mul_pd(a21, sy)),
+                              _mm256_mul_pd(a22, sz)),
+                vtz);
+            const __m256d fm = _mm256_mul_pd(_mm256_sub_pd(wx, vox), vinv_xy);
+            const __m256d fn = _mm256_mul_pd(_mm256_sub_pd(wy, voy), vinv_xy);
+            const __m256d fz = _mm256_mul_pd(wz, vinv_z);
+            const __m256d okm =
+                _mm256_and_pd(_mm256_and_pd(_mm256_and_pd(_mm256_cmp_pd(fm, lo, _CMP_GE_OQ),
+                                                          _mm256_cmp_pd(fm, hi, _CMP_LT_OQ)),
+                                            _mm256_and_pd(_mm256_cmp_pd(fn, lo, _CMP_GE_OQ),
+                                                          _mm256_cmp_pd(fn, hi, _CMP_LT_OQ))),
+                              _mm256_and_pd(_mm256_cmp_pd(fz, lo, _CMP_GE_OQ),
+                                            _mm256_cmp_pd(fz, hi, _CMP_LT_OQ)));
+            // Invalid lanes become 0 before the conversion.
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(bm + j),
+                             _mm256_cvttpd_epi32(_mm256_floor_pd(_mm256_and_pd(fm, okm))));
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(bn + j),
+                             _mm256_cvttpd_epi32(_mm256_floor_pd(_mm256_and_pd(fn, okm))));
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(bz + j),
+                             _mm256_cvttpd_epi32(_mm256_floor_pd(_mm256_and_pd(fz, okm))));
+            const auto bits = static_cast<unsigned>(_mm256_movemask_pd(okm));
+            for (unsigned k = 0; k < 4; ++k) ok[j + k] = static_cast<uint8_t>((bits >> k) & 1u);
+            valid += static_cast<std::size_t>(__builtin_popcount(bits));
+            m_lo = _mm256_min_pd(m_lo, _mm256_blendv_pd(inf, fm, okm));
+            m_hi = _mm256_max_pd(m_hi, _mm256_blendv_pd(ninf, fm, okm));
+            n_lo = _mm256_min_pd(n_lo, _mm256_blendv_pd(inf, fn, okm));
+            n_hi = _mm256_max_pd(n_hi, _mm256_blendv_pd(ninf, fn, okm));
+            const __m256d r2 = _mm256_add_pd(_mm256_mul_pd(sx, sx), _mm256_mul_pd(sy, sy));
+            const __m256d q = _mm256_div_pd(_mm256_mul_pd(sz, _mm256_and_pd(sz, abs_mask)),
+                                            _mm256_max_pd(r2, min_r2));
+            const __m256d far = _mm256_and_pd(okm, _mm256_cmp_pd(r2, min_r2, _CMP_GT_OQ));
+            top = _mm256_max_pd(top, _mm256_blendv_pd(ninf, q, far));
+        }
+        alignas(32) double lanes[5][4];
+        _mm256_store_pd(lanes[0], m_lo);
+        _mm256_store_pd(lanes[1], m_hi);
+        _mm256_store_pd(lanes[2], n_lo);
+        _mm256_store_pd(lanes[3], n_hi);
+        _mm256_store_pd(lanes[4], top);
+        for (int k = 0; k < 4; ++k)
+        {
+            e.m_lo = std::min(e.m_lo, lanes[0][k]);
+            e.m_hi = std::max(e.m_hi, lanes[1][k]);
+            e.n_lo = std::min(e.n_lo, lanes[2][k]);
+            e.n_hi = std::max(e.n_hi, lanes[3][k]);
+            e.top = std::max(e.top, lanes[4][k]);
+        }
+        return valid +
+               quantizeScalar(x + j, y + j, z + j, n - j, bm + j, bn + j, bz + j, ok + j, e);
+    }
+#endif
+
+    template <bool kKeepIndex>
+    ChunkSummary run(const PointsView& pts, std::size_t i0, std::size_t i1,
+                     int32_t* __restrict m_out, int32_t* __restrict n_out,
+                     int32_t* __restrict z_out, uint32_t* __restrict src_out,
+                     uint8_t* __restrict repeats) const
+    {
+        constexpr std::size_t kBlock = 256;
+        alignas(64) int32_t bm[kBlock], bn[kBlock], bz[kBlock];
+        alignas(64) uint8_t bok[kBlock];
+        Extremes e;
+        std::size_t v = i0, valid = 0;
+        bool have_prev = false;  // input point i - 1 is valid
+        int32_t prev_m = 0, prev_n = 0, prev_z = 0;
+        for (std::size_t b0 = i0; b0 < i1; b0 += kBlock)
+        {
+            const std::size_t nb = std::min(kBlock, i1 - b0);
+            valid += quantizeBlock(pts.x + b0, pts.y + b0, pts.z + b0, nb, bm, bn, bz, bok, e);
+            // Compaction. Branch-free for repeats: a repeat is written, then overwritten by the
+            // next point kept (three points in four are repeats, in no predictable pattern).
+            for (std::size_t j = 0; j < nb; ++j)
+            {
+                if (!bok[j])
+                {
+                    have_prev = false;
+                    continue;
+                }
+                const int32_t m = bm[j], n = bn[j], zc = bz[j];
+                const bool repeat = have_prev & (m == prev_m) & (n == prev_n) & (zc == prev_z);
+                m_out[v] = m;
+                n_out[v] = n;
+                z_out[v] = zc;
+                if constexpr (kKeepIndex)
+                {
+                    src_out[v] = static_cast<uint32_t>(b0 + j);
+                    repeats[b0 + j] = repeat;
+                }
+                v += !repeat;
+                have_prev = true;
+                prev_m = m;
+                prev_n = n;
+                prev_z = zc;
+            }
+        }
+        ChunkSummary ch;
+        ch.valid = valid;
+        ch.kept = v - i0;
+        ch.top_slope_sq = e.top;
+        // floor() is monotone, so these are the extremes of the valid points' indices (and
+        // they fit, as each of those points did).
+        if (valid > 0)
+        {
+            const bool fit = floorToInt32(e.m_lo, ch.m_min) && floorToInt32(e.m_hi, ch.m_max) &&
+                             floorToInt32(e.n_lo, ch.n_min) && floorToInt32(e.n_hi, ch.n_max);
+            assert(fit);
+            static_cast<void>(fit);
+        }
+        return ch;
+    }
+};
+}  // namespace
+
 void PillarGrid::bucketScan(const PointsView& pts, const Eigen::Isometry3d& T, ScanPillars& out,
                             bool keep_index) const
 {
     const Eigen::Matrix3d R = T.linear();
     const Eigen::Vector3d t = T.translation();
-    const double ox = params_.origin_x, oy = params_.origin_y;
-    const double inv_xy = 1.0 / params_.pillar_size;
-    const double inv_z = 1.0 / params_.height_resolution;
     out.sensor = t;
     out.top_slope_sq = -std::numeric_limits<double>::infinity();
     out.tmp_m.resize(pts.size);
     out.tmp_n.resize(pts.size);
     out.tmp_z.resize(pts.size);
-    if (keep_index) out.tmp_src.resize(pts.size);
+    if (keep_index)
+    {
+        out.tmp_src.resize(pts.size);
+        out.repeats.assign(pts.size, 0);
+    }
 
     // Pass 1: transform, quantize (Eq. 1; as quantize(), without std::optional) and keep the
-    // valid points, with the bounding box of their pillars and the top beam's elevation. In
-    // fixed chunks (whatever the thread count, so the result is the same), each compacted in
-    // place, then moved together.
-    constexpr double kMinR2 = kMinRangeForElevation * kMinRangeForElevation;
+    // valid points that are not repeats, with the bounding box of their pillars and the top
+    // beam's elevation. In fixed chunks (whatever the thread count, so the result is the
+    // same; a chunk's first point is never a repeat), each compacted in place, then moved
+    // together.
     constexpr std::size_t kChunk = 16384;
-    struct Chunk
-    {
-        std::size_t valid = 0;
-        int32_t m_min = std::numeric_limits<int32_t>::max();
-        int32_t m_max = std::numeric_limits<int32_t>::min();
-        int32_t n_min = std::numeric_limits<int32_t>::max();
-        int32_t n_max = std::numeric_limits<int32_t>::min();
-        double top_num = -1.0, top_den = 0.0;  // top_slope_sq = top_num / top_den
-    };
+    const QuantizeChunk quant{R, t, params_};
     const std::size_t n_chunks = (pts.size + kChunk - 1) / kChunk;
-    std::array<Chunk, 64> small_chunks;  // up to 1M points without allocation
-    std::vector<Chunk> big_chunks(n_chunks > small_chunks.size() ? n_chunks : 0);
-    Chunk* chunks = big_chunks.empty() ? small_chunks.data() : big_chunks.data();
+    std::array<ChunkSummary, 64> small_chunks;  // up to 1M points without allocation
+    std::vector<ChunkSummary> big_chunks(n_chunks > small_chunks.size() ? n_chunks : 0);
+    ChunkSummary* chunks = big_chunks.empty() ? small_chunks.data() : big_chunks.data();
     forRanges(n_chunks, 1,
               [&](std::size_t c0, std::size_t c1)
               {
                   for (std::size_t c = c0; c < c1; ++c)
                   {
-                      Chunk ch;
                       const std::size_t i0 = c * kChunk, i1 = std::min(pts.size, i0 + kChunk);
-                      std::size_t v = i0;
-                      for (std::size_t i = i0; i < i1; ++i)
-                      {
-                          const double sx = pts.x[i], sy = pts.y[i], sz = pts.z[i];
-                          const double wx = R(0, 0) * sx + R(0, 1) * sy + R(0, 2) * sz + t.x();
-                          const double wy = R(1, 0) * sx + R(1, 1) * sy + R(1, 2) * sz + t.y();
-                          const double wz = R(2, 0) * sx + R(2, 1) * sy + R(2, 2) * sz + t.z();
-                          int32_t m = 0, n = 0, zc = 0;
-                          // Non-finite points fail here too.
-                          if (!floorToInt32((wx - ox) * inv_xy, m) ||
-                              !floorToInt32((wy - oy) * inv_xy, n) || !floorToInt32(wz * inv_z, zc))
-                              continue;
-                          out.tmp_m[v] = m;
-                          out.tmp_n[v] = n;
-                          out.tmp_z[v] = zc;
-                          if (keep_index) out.tmp_src[v] = static_cast<uint32_t>(i);
-                          ++v;
-                          ch.m_min = std::min(ch.m_min, m);
-                          ch.m_max = std::max(ch.m_max, m);
-                          ch.n_min = std::min(ch.n_min, n);
-                          ch.n_max = std::max(ch.n_max, n);
-                          // Largest z / r as z |z| / r^2, by cross-multiplication (r^2 > 0).
-                          const double r2 = sx * sx + sy * sy;
-                          if (r2 > kMinR2 && sz * std::abs(sz) * ch.top_den > ch.top_num * r2)
-                          {
-                              ch.top_num = sz * std::abs(sz);
-                              ch.top_den = r2;
-                          }
-                      }
-                      ch.valid = v - i0;
-                      chunks[c] = ch;
+                      chunks[c] =
+                          keep_index
+                              ? quant.run<true>(pts, i0, i1, out.tmp_m.data(), out.tmp_n.data(),
+                                                out.tmp_z.data(), out.tmp_src.data(),
+                                                out.repeats.data())
+                              : quant.run<false>(pts, i0, i1, out.tmp_m.data(), out.tmp_n.data(),
+                                                 out.tmp_z.data(), nullptr, nullptr);
                   }
               });
     int32_t m_min = std::numeric_limits<int32_t>::max(),
             m_max = std::numeric_limits<int32_t>::min();
     int32_t n_min = m_min, n_max = m_max;
-    double top_num = -1.0, top_den = 0.0;
-    std::size_t v = 0;
+    std::size_t v = 0, valid = 0;
     for (std::size_t c = 0; c < n_chunks; ++c)
     {
-        const Chunk& ch = chunks[c];
+        const ChunkSummary& ch = chunks[c];
         const std::size_t from = c * kChunk;
-        if (from != v && ch.valid > 0)  // close the gap left by invalid points
+        if (from != v && ch.kept > 0)  // close the gap left by invalid points and repeats
         {
-            std::copy_n(out.tmp_m.begin() + from, ch.valid, out.tmp_m.begin() + v);
-            std::copy_n(out.tmp_n.begin() + from, ch.valid, out.tmp_n.begin() + v);
-            std::copy_n(out.tmp_z.begin() + from, ch.valid, out.tmp_z.begin() + v);
+            std::copy_n(out.tmp_m.begin() + from, ch.kept, out.tmp_m.begin() + v);
+            std::copy_n(out.tmp_n.begin() + from, ch.kept, out.tmp_n.begin() + v);
+            std::copy_n(out.tmp_z.begin() + from, ch.kept, out.tmp_z.begin() + v);
             if (keep_index)
-                std::copy_n(out.tmp_src.begin() + from, ch.valid, out.tmp_src.begin() + v);
+                std::copy_n(out.tmp_src.begin() + from, ch.kept, out.tmp_src.begin() + v);
         }
-        v += ch.valid;
+        v += ch.kept;
+        valid += ch.valid;
         m_min = std::min(m_min, ch.m_min);
         m_max = std::max(m_max, ch.m_max);
         n_min = std::min(n_min, ch.n_min);
         n_max = std::max(n_max, ch.n_max);
-        if (ch.top_den > 0.0 && ch.top_num * top_den > top_num * ch.top_den)
-        {
-            top_num = ch.top_num;
-            top_den = ch.top_den;
-        }
+        out.top_slope_sq = std::max(out.top_slope_sq, ch.top_slope_sq);
     }
-    if (top_den > 0.0) out.top_slope_sq = top_num / top_den;
-    out.points_invalid = pts.size - v;
+    out.points_valid = valid;
+    out.points_invalid = pts.size - valid;
     out.keys.clear();
     out.offsets.clear();
     out.cells.resize(v);
@@ -495,7 +713,7 @@ void PillarGrid::buildIntervals(ScanPillars& scan) const
     const std::size_t np = scan.pillarCount();
     scan.ceilings.resize(np);
     scan.span_counts.resize(np);
-    scan.spans.resize(scan.pointCount());
+    scan.spans.resize(scan.entryCount());
     const double res = params_.height_resolution;
     const double inv_res = 1.0 / res;
     const double beam_slope = std::tan(params_.beam_spacing_deg * M_PI / 180.0);
@@ -545,49 +763,53 @@ void PillarGrid::buildIntervals(ScanPillars& scan) const
 InsertStats PillarGrid::mergeScan(const ScanPillars& scan)
 {
     InsertStats st;
-    st.points_used = scan.pointCount();
+    st.points_used = scan.points_valid;
     st.points_invalid = scan.points_invalid;
     const std::size_t np = scan.pillarCount();
 
-    // Find or create every pillar first (serial: the table may grow); reserving up front
-    // keeps the pointers valid while the pillars are updated.
-    pillars_.reserve(pillars_.size() + np);
+    // Pillars already in the map are found and updated in parallel (finds are read-only and
+    // pillars independent); the new ones are then created and updated in scan order.
     targets_.resize(np);
-    constexpr std::size_t kAhead = 8;  // the table is far bigger than the cache: prefetch
-    for (std::size_t p = 0; p < np; ++p)
-    {
-        if (p + kAhead < np) pillars_.prefetch(scan.keys[p + kAhead]);
-        auto [it, inserted] = pillars_.try_emplace(scan.keys[p]);
-        if (inserted)
-        {
-            // A new pillar is an empty one with the prior p_empty: the general update then
-            // gives its intervals Bayesfilter(p_empty_init, alpha, beta) (Eq. 14).
-            it->second.logodds_empty = model_.clamp(model_.empty_init);
-            ++st.pillars_created;
-        }
-        targets_[p] = &it->second;
-    }
-    st.pillars_updated = np - st.pillars_created;
-
     const std::size_t cap = params_.max_intervals_per_pillar;
-    auto update = [&](std::size_t p0, std::size_t p1, std::vector<Interval>& scratch)
+    constexpr std::size_t kAhead = 8;  // the table is far bigger than the cache: prefetch
+    auto updateExisting = [&](std::size_t p0, std::size_t p1, std::vector<Interval>& scratch)
     {
         for (std::size_t p = p0; p < p1; ++p)
         {
-            if (p + kAhead < p1) __builtin_prefetch(targets_[p + kAhead]->intervals.data());
-            updatePillar(*targets_[p], scan.spans.data() + scan.offsets[p], scan.span_counts[p],
-                         model_, cap, scratch, scan.ceilings[p]);
+            if (p + kAhead < p1) pillars_.prefetch(scan.keys[p + kAhead]);
+            const auto it = pillars_.find(scan.keys[p]);
+            targets_[p] = it == pillars_.end() ? nullptr : &it->second;
+        }
+        for (std::size_t p = p0; p < p1; ++p)
+        {
+            if (p + kAhead < p1 && targets_[p + kAhead])
+                __builtin_prefetch(targets_[p + kAhead]->intervals.data());
+            if (targets_[p])
+                updatePillar(*targets_[p], scan.spans.data() + scan.offsets[p], scan.span_counts[p],
+                             model_, cap, scratch, scan.ceilings[p]);
         }
     };
     if (threads_ <= 1)
-        update(0, np, scratch_);
+        updateExisting(0, np, scratch_);
     else
         forRanges(np, 256,
                   [&](std::size_t p0, std::size_t p1)
                   {
                       std::vector<Interval> scratch;
-                      update(p0, p1, scratch);
+                      updateExisting(p0, p1, scratch);
                   });
+    for (std::size_t p = 0; p < np; ++p)
+    {
+        if (targets_[p]) continue;
+        // A new pillar is an empty one with the prior p_empty: the general update then gives
+        // its intervals Bayesfilter(p_empty_init, alpha, beta) (Eq. 14).
+        Pillar& pil = pillars_[scan.keys[p]];
+        pil.logodds_empty = model_.clamp(model_.empty_init);
+        ++st.pillars_created;
+        updatePillar(pil, scan.spans.data() + scan.offsets[p], scan.span_counts[p], model_, cap,
+                     scratch_, scan.ceilings[p]);
+    }
+    st.pillars_updated = np - st.pillars_created;
     return st;
 }
 
@@ -654,6 +876,13 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
               });
     ClassifyStats st;
     st.static_points = n_static;
+    // A repeat has the pillar and height cell of the point before it, hence its class.
+    for (std::size_t i = 1; i < pts.size; ++i)
+        if (scan.repeats[i])
+        {
+            is_dynamic[i] = is_dynamic[i - 1];
+            st.static_points += is_dynamic[i] == 0;
+        }
     // Points that bucketScan() skipped: non-finite ones are invalid (dynamic); finite ones
     // beyond the int32 index range lie in unknown space, which has the prior.
     if (scan.points_invalid > 0)

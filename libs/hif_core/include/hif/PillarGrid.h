@@ -62,23 +62,31 @@ struct ScanPillars
     std::vector<uint32_t> span_counts;  ///< pillar p's spans: spans[offsets[p]] onwards
     /** @} */
 
-    /** @name Per valid point, grouped by pillar
+    /** @name Per cell entry, grouped by pillar
+     *  A valid input point with the same pillar and height cell as the input point just before
+     *  it is a repeat: it is not stored (it would change no interval and no classification).
+     *  On KITTI scans, ordered by beam, three points in four are repeats.
      *  @{ */
-    /** Height cell of each point. After buildIntervals(), each pillar's range starts with its
-     *  distinct cells in ascending order (what follows them is unspecified). */
+    /** Height cell of each stored point. After buildIntervals(), each pillar's range starts
+     *  with its distinct cells in ascending order (what follows them is unspecified). */
     std::vector<int32_t> cells;
     std::vector<uint32_t> index;  ///< input index of cells[k] (filled for classification only)
-    std::vector<Span> spans;      ///< at most one span per point, so pillar p's fit at offsets[p]
+    std::vector<Span> spans;      ///< at most one span per entry, so pillar p's fit at offsets[p]
     /** @} */
+
+    /** Per input point (filled for classification only): 1 when the point is a repeat of the
+     *  input point before it, so it takes that point's class. */
+    std::vector<uint8_t> repeats;
 
     Eigen::Vector3d sensor = Eigen::Vector3d::Zero();  ///< sensor position, world frame
     /** Top beam's elevation as the largest z * |z| / (x^2 + y^2) of the points farther than
      *  2 m horizontally (sensor frame; monotone in z / range, no square root); -inf if none. */
     double top_slope_sq = -std::numeric_limits<double>::infinity();
-    std::size_t points_invalid = 0;
+    std::size_t points_valid = 0;    ///< valid input points, repeats included
+    std::size_t points_invalid = 0;  ///< non-finite, or outside the int32 index range
 
     [[nodiscard]] std::size_t pillarCount() const { return keys.size(); }
-    [[nodiscard]] std::size_t pointCount() const { return cells.size(); }
+    [[nodiscard]] std::size_t entryCount() const { return cells.size(); }
 
     /** Scratch of bucketScan(), kept to be reused. */
     std::vector<int32_t> tmp_m, tmp_n, tmp_z;
