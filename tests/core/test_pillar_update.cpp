@@ -205,13 +205,13 @@ TEST(PillarUpdate, TouchingEqualResultsAreMergedLosslessly)
 TEST(CapIntervals, MergesClosestPairWithWeightedLogOdds)
 {
     std::vector<Interval> v = {{0, 2, 1.0f}, {3, 4, 0.0f}, {10, 12, 2.0f}};
-    capIntervals(v, 2);
+    v.resize(capIntervals(v.data(), v.size(), 2));
     ASSERT_EQ(v.size(), 2u);
     EXPECT_EQ(v[0].lo, 0);
     EXPECT_EQ(v[0].hi, 4);
     EXPECT_NEAR(v[0].logodds, 2.0 / 3.0, 1e-6);  // (2 cells * 1 + 1 cell * 0) / 3
     EXPECT_EQ(v[1].lo, 10);
-    capIntervals(v, 1);
+    v.resize(capIntervals(v.data(), v.size(), 1));
     ASSERT_EQ(v.size(), 1u);
     EXPECT_EQ(v[0].lo, 0);
     EXPECT_EQ(v[0].hi, 12);

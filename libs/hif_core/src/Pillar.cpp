@@ -71,7 +71,7 @@ void updatePillar(Pillar& g, const Span* t, std::size_t nt, const LogOddsModel& 
     // The sweep below yields at most 2 (ng + nt) - 1 pieces. They are written field by field
     // through a pointer: building each Interval as a temporary and copying it costs a
     // store-forwarding stall per piece.
-    out.resize(2 * (ng + nt));
+    if (out.size() < 2 * (ng + nt)) out.resize(2 * (ng + nt));  // grows, never shrinks
     Interval* const o = out.data();
     std::size_t count = 0;
     auto emit = [&](int32_t lo, int32_t hi, float l)
@@ -128,22 +128,21 @@ void updatePillar(Pillar& g, const Span* t, std::size_t nt, const LogOddsModel& 
         // neither: not covered by any observation, discarded.
         x = next;
     }
-    out.resize(count);
-    if (count > max_intervals) capIntervals(out, max_intervals);
+    if (count > max_intervals) count = capIntervals(o, count, max_intervals);
     // A copy, not a swap: the pillar keeps its own storage, so steady state allocates nothing.
-    g.intervals.assign(out.begin(), out.end());
+    g.intervals.assign(o, o + count);
     g.logodds_empty = model.clamp(empty_prior + model.miss);  // Eq. 8
     g.seen_top = std::max(seen_top, ceiling);
 }
 
-void capIntervals(std::vector<Interval>& iv, std::size_t max_intervals)
+std::size_t capIntervals(Interval* iv, std::size_t n, std::size_t max_intervals)
 {
-    while (iv.size() > max_intervals && iv.size() > 1)
+    while (n > max_intervals && n > 1)
     {
         std::size_t best = 0;
         int64_t best_gap = std::numeric_limits<int64_t>::max();
         float best_dl = std::numeric_limits<float>::max();
-        for (std::size_t k = 0; k + 1 < iv.size(); ++k)
+        for (std::size_t k = 0; k + 1 < n; ++k)
         {
             const int64_t gap = static_cast<int64_t>(iv[k + 1].lo) - iv[k].hi;
             const float dl = std::abs(iv[k + 1].logodds - iv[k].logodds);
@@ -160,23 +159,25 @@ void capIntervals(std::vector<Interval>& iv, std::size_t max_intervals)
         const double wb = static_cast<double>(b.hi) - b.lo;
         a.logodds = static_cast<float>((wa * a.logodds + wb * b.logodds) / (wa + wb));
         a.hi = b.hi;
-        iv.erase(iv.begin() + static_cast<std::ptrdiff_t>(best) + 1);
+        std::copy(iv + best + 2, iv + n, iv + best + 1);
+        --n;
     }
     // A merge can make a new neighbour pair touch with equal log-odds.
-    joinEqualNeighbours(iv);
+    return joinEqualNeighbours(iv, n);
 }
 
-void joinEqualNeighbours(std::vector<Interval>& iv)
+std::size_t joinEqualNeighbours(Interval* iv, std::size_t n)
 {
+    if (n == 0) return 0;
     std::size_t w = 0;
-    for (std::size_t k = 1; k < iv.size(); ++k)
+    for (std::size_t k = 1; k < n; ++k)
     {
         if (iv[w].hi == iv[k].lo && iv[w].logodds == iv[k].logodds)
             iv[w].hi = iv[k].hi;
         else
             iv[++w] = iv[k];
     }
-    if (!iv.empty()) iv.resize(w + 1);
+    return w + 1;
 }
 
 const Interval* findInterval(const Pillar& p, int32_t z)

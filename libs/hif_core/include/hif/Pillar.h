@@ -104,14 +104,15 @@ void updatePillar(Pillar& g, const Span* t, std::size_t nt, const LogOddsModel& 
                   std::size_t max_intervals, std::vector<Interval>& scratch,
                   int32_t ceiling = kAllHeights);
 
-/** Merges neighbours until at most `max_intervals` remain: each step joins the pair with the
- *  smallest gap between them (ties: the smallest log-odds difference) into one interval that
- *  spans both, with the length-weighted mean of their log-odds. */
-void capIntervals(std::vector<Interval>& iv, std::size_t max_intervals);
+/** Merges neighbours of iv[0, n) until at most `max_intervals` remain: each step joins the
+ *  pair with the smallest gap between them (ties: the smallest log-odds difference) into one
+ *  interval that spans both, with the length-weighted mean of their log-odds. Returns the new
+ *  count; the result is iv[0, count). */
+std::size_t capIntervals(Interval* iv, std::size_t n, std::size_t max_intervals);
 
-/** Joins touching neighbours of equal log-odds (lossless), restoring the invariant on Pillar
- *  after log-odds changed in place. */
-void joinEqualNeighbours(std::vector<Interval>& iv);
+/** Joins touching neighbours of equal log-odds in iv[0, n) (lossless), restoring the invariant
+ *  on Pillar after log-odds changed in place. Returns the new count. */
+std::size_t joinEqualNeighbours(Interval* iv, std::size_t n);
 
 /** Interval of `p` containing height cell `z`, or nullptr. */
 [[nodiscard]] const Interval* findInterval(const Pillar& p, int32_t z);
