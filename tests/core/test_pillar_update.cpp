@@ -389,7 +389,7 @@ TEST(ParamsPaper, TurnsOffEveryAddition)
 TEST(RangeAdaptiveIntervals, FarPillarsMergeHeightsOneBeamApart)
 {
     // Sensor at the origin; a pillar 25.5 m away holds heights in cells 0 and 4 (three empty
-    // cells, 0.15 m, between them). One beam of 0.42 deg spans 25.5 * tan(0.42 deg) = 0.187 m
+    // cells, 0.15 m, between them). One beam of 0.44 deg spans 25.5 * tan(0.44 deg) = 0.196 m
     // there: merged into one interval with range-adaptive intervals; two intervals with the
     // paper's fixed 0.1 m gap and 0.05 m padding ([-1, 2) and [3, 6)).
     const std::vector<float> x{25.3f, 25.3f, 1.0f}, y{0.5f, 0.5f, 0.0f}, z{0.01f, 0.22f, 0.0f};

@@ -112,7 +112,7 @@ public:
          *  Default: true) */
         bool unseen_height_prior = Params().unseen_height_prior;
         /** Range-adaptive intervals: vertical beam spacing, degrees; 0 = the paper's fixed
-         *  merge_gap/interval_padding (ours; Default: 0.42, the HDL-64E) */
+         *  merge_gap/interval_padding (ours; Default: 0.44, for the HDL-64E) */
         double beam_spacing_deg = Params().beam_spacing_deg;
         /** See-through misses within this horizontal distance of the sensor, m; 0 = off, the
          *  paper (ours; Default: 0) */
