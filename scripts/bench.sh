@@ -8,5 +8,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 HIF_BUILD_BENCH=ON bash scripts/build.sh > /dev/null
 "${HIF_BUILD_DIR:-build}/bench/hif_bench" --benchmark_repetitions="${HIF_BENCH_REPETITIONS:-5}" \
+  --benchmark_enable_random_interleaving=true \
   --benchmark_report_aggregates_only=true --benchmark_display_aggregates_only=true "$@" \
   | grep -vE "_(mean|stddev|cv) "

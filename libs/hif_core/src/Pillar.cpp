@@ -130,6 +130,14 @@ void updatePillar(Pillar& g, const Span* t, std::size_t nt, const LogOddsModel& 
     }
     if (count > max_intervals) count = capIntervals(o, count, max_intervals);
     // A copy, not a swap: the pillar keeps its own storage, so steady state allocates nothing.
+    // Storage grows in powers of two: exact-size reallocations, pillar after pillar, fragment
+    // the heap (peak memory grew with the length of the run).
+    if (g.intervals.capacity() < count)
+    {
+        std::size_t c = 4;
+        while (c < count) c *= 2;
+        g.intervals.reserve(c);
+    }
     g.intervals.assign(o, o + count);
     g.logodds_empty = model.clamp(empty_prior + model.miss);  // Eq. 8
     g.seen_top = std::max(seen_top, ceiling);
