@@ -414,20 +414,51 @@ struct ChunkSummary
     double top_slope_sq = -std::numeric_limits<double>::infinity();  ///< see ScanPillars
 };
 
-/** Extremes over the valid points of pass 1, before floor() (which is monotone).  */
-struct Extremes
+/** The running state of pass 1 over one chunk: extremes of the valid points before floor()
+ *  (which is monotone), counts, and the last point for the repeat test. */
+struct PassState
 {
     double m_lo = std::numeric_limits<double>::infinity();
     double m_hi = -std::numeric_limits<double>::infinity();
     double n_lo = std::numeric_limits<double>::infinity();
     double n_hi = -std::numeric_limits<double>::infinity();
     double top = -std::numeric_limits<double>::infinity();  ///< largest z |z| / r^2
+    std::size_t v = 0;                                      ///< next output slot
+    std::size_t valid = 0;
+    bool have_prev = false;  ///< the input point before the next one is valid
+    int32_t prev_m = 0, prev_n = 0, prev_z = 0;
 };
+
+#if HIF_X86_AVX
+/** For each 4-bit mask of kept lanes, the pshufb control that moves those 32-bit lanes to the
+ *  front, in order. */
+struct CompactTable
+{
+    alignas(16) uint8_t shuffle[16][16];
+    CompactTable() : shuffle()
+    {
+        for (unsigned mask = 0; mask < 16; ++mask)
+        {
+            unsigned out = 0;
+            for (unsigned lane = 0; lane < 4; ++lane)
+                if (mask & (1u << lane))
+                {
+                    for (unsigned b = 0; b < 4; ++b)
+                        shuffle[mask][4 * out + b] = static_cast<uint8_t>(4 * lane + b);
+                    ++out;
+                }
+            for (unsigned b = 4 * out; b < 16; ++b) shuffle[mask][b] = 0x80;  // zero
+        }
+    }
+};
+#endif
 
 /** Pass 1 of bucketScan() over input points [i0, i1): transform, quantize (Eq. 1, as
  *  quantize() without std::optional) and write the valid points that are not repeats to
  *  m/n/z[i0...] (and their input index to src), with their bounding box and the top beam's
- *  elevation. Every value it needs is a member or a local, so loops keep them in registers. */
+ *  elevation. Four points at a time with AVX when the CPU has it (chosen at run time; the
+ *  same operations in the same order, without fused multiply-add, so the same bits), one at a
+ *  time otherwise and for the last 1-3 points of a chunk. */
 struct QuantizeChunk
 {
     double r00, r01, r02, r10, r11, r12, r20, r21, r22;
@@ -456,51 +487,58 @@ struct QuantizeChunk
 
     static constexpr double kMinR2 = kMinRangeForElevation * kMinRangeForElevation;
 
-    /** Quantizes points [0, n) of x/y/z into m/n/z (left unset where ok[j] == 0: non-finite or
-     *  outside the int32 range) and widens `e`; returns the count of valid points. */
-    std::size_t quantizeScalar(const float* x, const float* y, const float* z, std::size_t n,
-                               int32_t* bm, int32_t* bn, int32_t* bz, uint8_t* ok,
-                               Extremes& e) const
+    /** Points [i, i1), one at a time. */
+    template <bool kKeepIndex>
+    void runScalar(const PointsView& pts, std::size_t i, std::size_t i1, int32_t* m_out,
+                   int32_t* n_out, int32_t* z_out, uint32_t* src_out, uint8_t* repeats,
+                   PassState& st) const
     {
-        std::size_t valid = 0;
-        for (std::size_t j = 0; j < n; ++j)
+        for (; i < i1; ++i)
         {
-            const double sx = x[j], sy = y[j], sz = z[j];
+            const double sx = pts.x[i], sy = pts.y[i], sz = pts.z[i];
             const double fm = (r00 * sx + r01 * sy + r02 * sz + tx - ox) * inv_xy;
             const double fn = (r10 * sx + r11 * sy + r12 * sz + ty - oy) * inv_xy;
             const double fz = (r20 * sx + r21 * sy + r22 * sz + tz) * inv_z;
-            ok[j] = floorToInt32(fm, bm[j]) && floorToInt32(fn, bn[j]) && floorToInt32(fz, bz[j]);
-            if (!ok[j]) continue;
-            ++valid;
-            e.m_lo = std::min(e.m_lo, fm);
-            e.m_hi = std::max(e.m_hi, fm);
-            e.n_lo = std::min(e.n_lo, fn);
-            e.n_hi = std::max(e.n_hi, fn);
+            int32_t m = 0, n = 0, zc = 0;
+            if (!floorToInt32(fm, m) || !floorToInt32(fn, n) || !floorToInt32(fz, zc))
+            {
+                st.have_prev = false;
+                continue;
+            }
+            ++st.valid;
+            st.m_lo = std::min(st.m_lo, fm);
+            st.m_hi = std::max(st.m_hi, fm);
+            st.n_lo = std::min(st.n_lo, fn);
+            st.n_hi = std::max(st.n_hi, fn);
             const double r2 = sx * sx + sy * sy;
-            if (r2 > kMinR2) e.top = std::max(e.top, sz * std::abs(sz) / std::max(r2, kMinR2));
+            if (r2 > kMinR2) st.top = std::max(st.top, sz * std::abs(sz) / std::max(r2, kMinR2));
+            const bool repeat = st.have_prev && m == st.prev_m && n == st.prev_n && zc == st.prev_z;
+            if constexpr (kKeepIndex) repeats[i] = repeat;
+            st.have_prev = true;
+            st.prev_m = m;
+            st.prev_n = n;
+            st.prev_z = zc;
+            if (repeat) continue;
+            m_out[st.v] = m;
+            n_out[st.v] = n;
+            z_out[st.v] = zc;
+            if constexpr (kKeepIndex) src_out[st.v] = static_cast<uint32_t>(i);
+            ++st.v;
         }
-        return valid;
-    }
-
-    /** quantizeScalar(), with AVX when the CPU has it (chosen at run time; the same
-     *  operations in the same order, without fused multiply-add, so the same bits). */
-    std::size_t quantizeBlock(const float* x, const float* y, const float* z, std::size_t n,
-                              int32_t* bm, int32_t* bn, int32_t* bz, uint8_t* ok, Extremes& e) const
-    {
-#if HIF_X86_AVX
-        static const bool has_avx = __builtin_cpu_supports("avx");
-        if (has_avx) return quantizeAvx(x, y, z, n, bm, bn, bz, ok, e);
-#endif
-        return quantizeScalar(x, y, z, n, bm, bn, bz, ok, e);
     }
 
 #if HIF_X86_AVX
-    /** quantizeScalar() four points at a time. */
-    __attribute__((target("avx"))) std::size_t quantizeAvx(const float* x, const float* y,
-                                                           const float* z, std::size_t n,
-                                                           int32_t* bm, int32_t* bn, int32_t* bz,
-                                                           uint8_t* ok, Extremes& e) const
+    /** Points [i0, i1) in groups of four; returns where it stopped (fewer than four left).
+     *  Repeats are found by comparing each lane with the one before it, and the kept lanes
+     *  are packed with one shuffle, without a branch per point. */
+    template <bool kKeepIndex>
+    __attribute__((target("avx"))) std::size_t runAvx(const PointsView& pts, std::size_t i0,
+                                                      std::size_t i1, int32_t* m_out,
+                                                      int32_t* n_out, int32_t* z_out,
+                                                      uint32_t* src_out, uint8_t* repeats,
+                                                      PassState& st) const
     {
+        static const CompactTable table;
         const __m256d a00 = _mm256_set1_pd(r00), a01 = _mm256_set1_pd(r01),
                       a02 = _mm256_set1_pd(r02), a10 = _mm256_set1_pd(r10),
                       a11 = _mm256_set1_pd(r11), a12 = _mm256_set1_pd(r12),
@@ -515,13 +553,18 @@ struct QuantizeChunk
         const __m256d ninf = _mm256_set1_pd(-std::numeric_limits<double>::infinity());
         const __m256d abs_mask = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7fffffffffffffffLL));
         const __m256d min_r2 = _mm256_set1_pd(kMinR2);
+        const __m128i lane_index = _mm_setr_epi32(0, 1, 2, 3);
         __m256d m_lo = inf, m_hi = ninf, n_lo = inf, n_hi = ninf, top = ninf;
-        std::size_t valid = 0, j = 0;
-        for (; j + 4 <= n; j += 4)
+        // The previous point in lane 3 of these, and whether it is valid.
+        __m128i prev_m = _mm_set1_epi32(st.prev_m), prev_n = _mm_set1_epi32(st.prev_n),
+                prev_z = _mm_set1_epi32(st.prev_z);
+        unsigned prev_ok = st.have_prev ? 1u : 0u;
+        std::size_t v = st.v, valid = 0, j = i0;
+        for (; j + 4 <= i1; j += 4)
         {
-            const __m256d sx = _mm256_cvtps_pd(_mm_loadu_ps(x + j));
-            const __m256d sy = _mm256_cvtps_pd(_mm_loadu_ps(y + j));
-            const __m256d sz = _mm256_cvtps_pd(_mm_loadu_ps(z + j));
+            const __m256d sx = _mm256_cvtps_pd(_mm_loadu_ps(pts.x + j));
+            const __m256d sy = _mm256_cvtps_pd(_mm_loadu_ps(pts.y + j));
+            const __m256d sz = _mm256_cvtps_pd(_mm_loadu_ps(pts.z + j));
             // ((r0 sx + r1 sy) + r2 sz) + t, as the scalar expression.
             const __m256d wx = _mm256_add_pd(
                 _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(a00, sx), _mm256_mul_pd(a01, sy)),
@@ -546,15 +589,40 @@ struct QuantizeChunk
                               _mm256_and_pd(_mm256_cmp_pd(fz, lo, _CMP_GE_OQ),
                                             _mm256_cmp_pd(fz, hi, _CMP_LT_OQ)));
             // Invalid lanes become 0 before the conversion.
-            _mm_storeu_si128(reinterpret_cast<__m128i*>(bm + j),
-                             _mm256_cvttpd_epi32(_mm256_floor_pd(_mm256_and_pd(fm, okm))));
-            _mm_storeu_si128(reinterpret_cast<__m128i*>(bn + j),
-                             _mm256_cvttpd_epi32(_mm256_floor_pd(_mm256_and_pd(fn, okm))));
-            _mm_storeu_si128(reinterpret_cast<__m128i*>(bz + j),
-                             _mm256_cvttpd_epi32(_mm256_floor_pd(_mm256_and_pd(fz, okm))));
-            const auto bits = static_cast<unsigned>(_mm256_movemask_pd(okm));
-            for (unsigned k = 0; k < 4; ++k) ok[j + k] = static_cast<uint8_t>((bits >> k) & 1u);
-            valid += static_cast<std::size_t>(__builtin_popcount(bits));
+            const __m128i m = _mm256_cvttpd_epi32(_mm256_floor_pd(_mm256_and_pd(fm, okm)));
+            const __m128i n = _mm256_cvttpd_epi32(_mm256_floor_pd(_mm256_and_pd(fn, okm)));
+            const __m128i z = _mm256_cvttpd_epi32(_mm256_floor_pd(_mm256_and_pd(fz, okm)));
+            const auto ok = static_cast<unsigned>(_mm256_movemask_pd(okm));
+            valid += static_cast<std::size_t>(__builtin_popcount(ok));
+
+            // Lane k repeats lane k - 1 (lane 0: the previous group's lane 3).
+            const __m128i same =
+                _mm_and_si128(_mm_and_si128(_mm_cmpeq_epi32(m, _mm_alignr_epi8(m, prev_m, 12)),
+                                            _mm_cmpeq_epi32(n, _mm_alignr_epi8(n, prev_n, 12))),
+                              _mm_cmpeq_epi32(z, _mm_alignr_epi8(z, prev_z, 12)));
+            const auto same_bits = static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(same)));
+            const unsigned repeat = same_bits & ok & ((ok << 1) | prev_ok);
+            const unsigned keep = ok & ~repeat;
+            const __m128i shuffle =
+                _mm_load_si128(reinterpret_cast<const __m128i*>(table.shuffle[keep]));
+            // Four lanes are written, the kept ones first; v + 4 <= j + 4 <= i1.
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(m_out + v), _mm_shuffle_epi8(m, shuffle));
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(n_out + v), _mm_shuffle_epi8(n, shuffle));
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(z_out + v), _mm_shuffle_epi8(z, shuffle));
+            if constexpr (kKeepIndex)
+            {
+                const __m128i idx = _mm_add_epi32(_mm_set1_epi32(static_cast<int>(j)), lane_index);
+                _mm_storeu_si128(reinterpret_cast<__m128i*>(src_out + v),
+                                 _mm_shuffle_epi8(idx, shuffle));
+                for (unsigned k = 0; k < 4; ++k)
+                    repeats[j + k] = static_cast<uint8_t>((repeat >> k) & 1u);
+            }
+            v += static_cast<std::size_t>(__builtin_popcount(keep));
+            prev_m = m;
+            prev_n = n;
+            prev_z = z;
+            prev_ok = ok >> 3;
+
             m_lo = _mm256_min_pd(m_lo, _mm256_blendv_pd(inf, fm, okm));
             m_hi = _mm256_max_pd(m_hi, _mm256_blendv_pd(ninf, fm, okm));
             n_lo = _mm256_min_pd(n_lo, _mm256_blendv_pd(inf, fn, okm));
@@ -573,70 +641,44 @@ struct QuantizeChunk
         _mm256_store_pd(lanes[4], top);
         for (int k = 0; k < 4; ++k)
         {
-            e.m_lo = std::min(e.m_lo, lanes[0][k]);
-            e.m_hi = std::max(e.m_hi, lanes[1][k]);
-            e.n_lo = std::min(e.n_lo, lanes[2][k]);
-            e.n_hi = std::max(e.n_hi, lanes[3][k]);
-            e.top = std::max(e.top, lanes[4][k]);
+            st.m_lo = std::min(st.m_lo, lanes[0][k]);
+            st.m_hi = std::max(st.m_hi, lanes[1][k]);
+            st.n_lo = std::min(st.n_lo, lanes[2][k]);
+            st.n_hi = std::max(st.n_hi, lanes[3][k]);
+            st.top = std::max(st.top, lanes[4][k]);
         }
-        return valid +
-               quantizeScalar(x + j, y + j, z + j, n - j, bm + j, bn + j, bz + j, ok + j, e);
+        st.v = v;
+        st.valid += valid;
+        st.have_prev = prev_ok != 0;
+        st.prev_m = _mm_extract_epi32(prev_m, 3);
+        st.prev_n = _mm_extract_epi32(prev_n, 3);
+        st.prev_z = _mm_extract_epi32(prev_z, 3);
+        return j;
     }
 #endif
 
     template <bool kKeepIndex>
-    ChunkSummary run(const PointsView& pts, std::size_t i0, std::size_t i1,
-                     int32_t* __restrict m_out, int32_t* __restrict n_out,
-                     int32_t* __restrict z_out, uint32_t* __restrict src_out,
-                     uint8_t* __restrict repeats) const
+    ChunkSummary run(const PointsView& pts, std::size_t i0, std::size_t i1, int32_t* m_out,
+                     int32_t* n_out, int32_t* z_out, uint32_t* src_out, uint8_t* repeats) const
     {
-        constexpr std::size_t kBlock = 256;
-        alignas(64) int32_t bm[kBlock], bn[kBlock], bz[kBlock];
-        alignas(64) uint8_t bok[kBlock];
-        Extremes e;
-        std::size_t v = i0, valid = 0;
-        bool have_prev = false;  // input point i - 1 is valid
-        int32_t prev_m = 0, prev_n = 0, prev_z = 0;
-        for (std::size_t b0 = i0; b0 < i1; b0 += kBlock)
-        {
-            const std::size_t nb = std::min(kBlock, i1 - b0);
-            valid += quantizeBlock(pts.x + b0, pts.y + b0, pts.z + b0, nb, bm, bn, bz, bok, e);
-            // Compaction. Branch-free for repeats: a repeat is written, then overwritten by the
-            // next point kept (three points in four are repeats, in no predictable pattern).
-            for (std::size_t j = 0; j < nb; ++j)
-            {
-                if (!bok[j])
-                {
-                    have_prev = false;
-                    continue;
-                }
-                const int32_t m = bm[j], n = bn[j], zc = bz[j];
-                const bool repeat = have_prev & (m == prev_m) & (n == prev_n) & (zc == prev_z);
-                m_out[v] = m;
-                n_out[v] = n;
-                z_out[v] = zc;
-                if constexpr (kKeepIndex)
-                {
-                    src_out[v] = static_cast<uint32_t>(b0 + j);
-                    repeats[b0 + j] = repeat;
-                }
-                v += !repeat;
-                have_prev = true;
-                prev_m = m;
-                prev_n = n;
-                prev_z = zc;
-            }
-        }
+        PassState st;
+        st.v = i0;
+        std::size_t i = i0;
+#if HIF_X86_AVX
+        static const bool has_avx = __builtin_cpu_supports("avx");
+        if (has_avx) i = runAvx<kKeepIndex>(pts, i0, i1, m_out, n_out, z_out, src_out, repeats, st);
+#endif
+        runScalar<kKeepIndex>(pts, i, i1, m_out, n_out, z_out, src_out, repeats, st);
         ChunkSummary ch;
-        ch.valid = valid;
-        ch.kept = v - i0;
-        ch.top_slope_sq = e.top;
+        ch.valid = st.valid;
+        ch.kept = st.v - i0;
+        ch.top_slope_sq = st.top;
         // floor() is monotone, so these are the extremes of the valid points' indices (and
         // they fit, as each of those points did).
-        if (valid > 0)
+        if (st.valid > 0)
         {
-            const bool fit = floorToInt32(e.m_lo, ch.m_min) && floorToInt32(e.m_hi, ch.m_max) &&
-                             floorToInt32(e.n_lo, ch.n_min) && floorToInt32(e.n_hi, ch.n_max);
+            const bool fit = floorToInt32(st.m_lo, ch.m_min) && floorToInt32(st.m_hi, ch.m_max) &&
+                             floorToInt32(st.n_lo, ch.n_min) && floorToInt32(st.n_hi, ch.n_max);
             assert(fit);
             static_cast<void>(fit);
         }
@@ -860,19 +902,25 @@ InsertStats PillarGrid::mergeScan(const ScanPillars& scan)
     // pillars independent); the new ones are then created and updated in scan order.
     targets_.resize(np);
     const std::size_t cap = params_.max_intervals_per_pillar;
-    constexpr std::size_t kAhead = 8;  // the table is far bigger than the cache: prefetch
+    // A software pipeline, as the table and the intervals are far bigger than the cache: the
+    // slot of pillar p + 2D is prefetched, pillar p + D is found and its intervals prefetched,
+    // pillar p is updated.
+    constexpr std::size_t kAhead = 8;  // D
     auto updateExisting = [&](std::size_t p0, std::size_t p1, std::vector<Interval>& scratch)
     {
-        for (std::size_t p = p0; p < p1; ++p)
+        auto find = [&](std::size_t p)
         {
-            if (p + kAhead < p1) pillars_.prefetch(scan.keys[p + kAhead]);
             const auto it = pillars_.find(scan.keys[p]);
             targets_[p] = it == pillars_.end() ? nullptr : &it->second;
-        }
+            if (targets_[p]) __builtin_prefetch(targets_[p]->intervals.data());
+        };
+        for (std::size_t p = p0; p < std::min(p1, p0 + 2 * kAhead); ++p)
+            pillars_.prefetch(scan.keys[p]);
+        for (std::size_t p = p0; p < std::min(p1, p0 + kAhead); ++p) find(p);
         for (std::size_t p = p0; p < p1; ++p)
         {
-            if (p + kAhead < p1 && targets_[p + kAhead])
-                __builtin_prefetch(targets_[p + kAhead]->intervals.data());
+            if (p + 2 * kAhead < p1) pillars_.prefetch(scan.keys[p + 2 * kAhead]);
+            if (p + kAhead < p1) find(p + kAhead);
             if (targets_[p])
                 updatePillar(*targets_[p], scan.spans.data() + scan.offsets[p], scan.span_counts[p],
                              model_, cap, scratch, scan.ceilings[p]);
