@@ -553,6 +553,7 @@ struct QuantizeChunk
         const __m256d ninf = _mm256_set1_pd(-std::numeric_limits<double>::infinity());
         const __m256d abs_mask = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7fffffffffffffffLL));
         const __m256d min_r2 = _mm256_set1_pd(kMinR2);
+        const __m256d rel_slack = _mm256_set1_pd(1e-12);
         const __m128i lane_index = _mm_setr_epi32(0, 1, 2, 3);
         __m256d m_lo = inf, m_hi = ninf, n_lo = inf, n_hi = ninf, top = ninf;
         // The previous point in lane 3 of these, and whether it is valid.
@@ -627,11 +628,21 @@ struct QuantizeChunk
             m_hi = _mm256_max_pd(m_hi, _mm256_blendv_pd(ninf, fm, okm));
             n_lo = _mm256_min_pd(n_lo, _mm256_blendv_pd(inf, fn, okm));
             n_hi = _mm256_max_pd(n_hi, _mm256_blendv_pd(ninf, fn, okm));
+            // Top beam: z |z| / r^2 is divided out only where it may beat the lane's maximum
+            // (z |z| >= top r^2, less a relative 1e-12 so that rounding cannot hide one); the
+            // others cannot change it. A division per point cost 0.1 ms per scan.
             const __m256d r2 = _mm256_add_pd(_mm256_mul_pd(sx, sx), _mm256_mul_pd(sy, sy));
-            const __m256d q = _mm256_div_pd(_mm256_mul_pd(sz, _mm256_and_pd(sz, abs_mask)),
-                                            _mm256_max_pd(r2, min_r2));
-            const __m256d far = _mm256_and_pd(okm, _mm256_cmp_pd(r2, min_r2, _CMP_GT_OQ));
-            top = _mm256_max_pd(top, _mm256_blendv_pd(ninf, q, far));
+            const __m256d num = _mm256_mul_pd(sz, _mm256_and_pd(sz, abs_mask));
+            const __m256d bound = _mm256_mul_pd(top, r2);
+            const __m256d slack = _mm256_mul_pd(_mm256_and_pd(bound, abs_mask), rel_slack);
+            const __m256d far =
+                _mm256_and_pd(_mm256_and_pd(okm, _mm256_cmp_pd(r2, min_r2, _CMP_GT_OQ)),
+                              _mm256_cmp_pd(num, _mm256_sub_pd(bound, slack), _CMP_GE_OQ));
+            if (_mm256_movemask_pd(far) != 0)
+            {
+                const __m256d q = _mm256_div_pd(num, _mm256_max_pd(r2, min_r2));
+                top = _mm256_max_pd(top, _mm256_blendv_pd(ninf, q, far));
+            }
         }
         alignas(32) double lanes[5][4];
         _mm256_store_pd(lanes[0], m_lo);
