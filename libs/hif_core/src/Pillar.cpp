@@ -6,6 +6,7 @@
 #include "hif/Pillar.h"
 
 #include <algorithm>
+#include <cstring>
 #include <limits>
 
 namespace hif
@@ -164,19 +165,21 @@ std::size_t capIntervals(Interval* iv, std::size_t n, std::size_t max_intervals)
 {
     while (n > max_intervals && n > 1)
     {
+        // The pair with the smallest (gap, |log-odds difference|), the first on ties: both as
+        // one unsigned key (the gap is >= 0 and below 2^32; a non-negative float's bits order
+        // like its value), so the search has no branch to mispredict.
         std::size_t best = 0;
-        int64_t best_gap = std::numeric_limits<int64_t>::max();
-        float best_dl = std::numeric_limits<float>::max();
+        uint64_t best_key = std::numeric_limits<uint64_t>::max();
         for (std::size_t k = 0; k + 1 < n; ++k)
         {
-            const int64_t gap = static_cast<int64_t>(iv[k + 1].lo) - iv[k].hi;
+            const auto gap = static_cast<uint64_t>(static_cast<int64_t>(iv[k + 1].lo) - iv[k].hi);
             const float dl = std::abs(iv[k + 1].logodds - iv[k].logodds);
-            if (gap < best_gap || (gap == best_gap && dl < best_dl))
-            {
-                best = k;
-                best_gap = gap;
-                best_dl = dl;
-            }
+            uint32_t dl_bits = 0;
+            std::memcpy(&dl_bits, &dl, sizeof dl_bits);
+            const uint64_t key = (gap << 32) | dl_bits;
+            const bool better = key < best_key;
+            best = better ? k : best;
+            best_key = better ? key : best_key;
         }
         Interval& a = iv[best];
         const Interval& b = iv[best + 1];
