@@ -229,6 +229,52 @@ TEST(CHeightIntervalMapSerialization, RoundTripThroughClassFactoryIsExact)
     EXPECT_TRUE(copy->grid() == map.grid());
 }
 
+// Maps saved before the see-through options (serialization version 0) still load: the
+// options take their defaults (off), everything else is read as saved.
+TEST(CHeightIntervalMapSerialization, Version0MapsStillLoad)
+{
+    CHeightIntervalMap map(0.5, 0.1, -0.2, 0.02);
+    map.insertionOptions.alpha = 0.65;
+    map.insertionOptions.max_intervals_per_pillar = 12;
+    insertRandomScans(map, 10);
+    ASSERT_GT(map.intervalCount(), 100u);
+
+    // The version-0 layout, field by field: geometry, insertion options without the two
+    // see-through ones, generic map parameters, then the pillars.
+    const hif::Params p = map.params();
+    const auto& o = map.insertionOptions;
+    mrpt::io::CMemoryStream buf;
+    auto out = mrpt::serialization::archiveFrom(buf);
+    out << p.pillar_size << p.origin_x << p.origin_y << p.height_resolution;
+    out << o.merge_gap << o.interval_padding << o.alpha << o.beta << o.p_min << o.p_max
+        << o.p_empty_init << o.low_height_preservation << o.high_height_preservation
+        << o.unseen_height_prior << o.beam_spacing_deg << o.static_threshold
+        << o.max_intervals_per_pillar;
+    out << map.genericMapParams;
+    const auto pillars = map.grid().sortedPillars();
+    out << static_cast<uint64_t>(pillars.size());
+    for (const auto& [idx, pillar] : pillars)
+    {
+        out << idx.m << idx.n << pillar->logodds_empty << pillar->seen_top
+            << static_cast<uint32_t>(pillar->intervals.size());
+        for (const hif::Interval& iv : pillar->intervals) out << iv.lo << iv.hi << iv.logodds;
+    }
+
+    struct Version0Reader : CHeightIntervalMap
+    {
+        void read(mrpt::serialization::CArchive& in) { serializeFrom(in, 0); }
+    };
+    Version0Reader loaded;
+    loaded.insertionOptions.see_through_range = 20.0;  // must be reset to the default
+    buf.Seek(0);
+    auto in = mrpt::serialization::archiveFrom(buf);
+    loaded.read(in);
+    EXPECT_TRUE(loaded.grid() == map.grid());
+    EXPECT_EQ(loaded.params(), map.params());
+    EXPECT_EQ(loaded.insertionOptions.see_through_range, 0.0);
+    EXPECT_EQ(loaded.insertionOptions.see_through_margin, hif::Params().see_through_margin);
+}
+
 TEST(CHeightIntervalMapSerialization, TruncatedDataThrows)
 {
     CHeightIntervalMap map;
