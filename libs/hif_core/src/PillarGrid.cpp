@@ -82,13 +82,21 @@ std::size_t sortDistinct(int32_t* cells, std::size_t n)
         std::sort(cells, cells + n);
     }
     else
-        for (std::size_t k = 1; k < n; ++k)  // insertion sort
+    {
+        // Insertion sort that drops duplicates as it goes: cells[0, m) is sorted and distinct.
+        std::size_t m = n > 0 ? 1 : 0;
+        for (std::size_t k = 1; k < n; ++k)
         {
             const int32_t c = cells[k];
-            std::size_t j = k;
-            for (; j > 0 && cells[j - 1] > c; --j) cells[j] = cells[j - 1];
+            std::size_t j = m;
+            while (j > 0 && cells[j - 1] > c) --j;
+            if (j > 0 && cells[j - 1] == c) continue;  // already there
+            for (std::size_t q = m; q > j; --q) cells[q] = cells[q - 1];
             cells[j] = c;
+            ++m;
         }
+        return m;
+    }
     return static_cast<std::size_t>(std::unique(cells, cells + n) - cells);
 }
 }  // namespace
