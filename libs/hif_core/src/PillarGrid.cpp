@@ -793,9 +793,10 @@ void PillarGrid::bucketScan(const PointsView& pts, const Eigen::Isometry3d& T, S
         const auto bins = static_cast<std::size_t>(width * height);
         auto& bin = out.tmp_bin;
         bin.resize(v);
-        // counts[b] then, after the prefix sum, the first slot of bin b.
-        std::vector<uint32_t>& counts = out.offsets;  // reused as the histogram
-        counts.assign(bins + 1, 0);
+        // counts[b], then after the prefix sum the next free slot of bin b; the non-empty
+        // bins give the pillars and their offsets in the same pass.
+        std::vector<uint32_t>& counts = out.tmp_counts;
+        counts.assign(bins, 0);
         for (std::size_t k = 0; k < v; ++k)
         {
             const auto b = static_cast<uint32_t>(int64_t{out.tmp_m[k] - m_min} * height +
@@ -807,32 +808,21 @@ void PillarGrid::bucketScan(const PointsView& pts, const Eigen::Isometry3d& T, S
         for (std::size_t b = 0; b < bins; ++b)
         {
             const uint32_t c = counts[b];
+            if (c == 0) continue;
             counts[b] = sum;
-            if (c > 0)
-                out.keys.push_back(
-                    packKey({static_cast<int32_t>(m_min + static_cast<int64_t>(b) / height),
-                             static_cast<int32_t>(n_min + static_cast<int64_t>(b) % height)}));
+            out.keys.push_back(
+                packKey({static_cast<int32_t>(m_min + static_cast<int64_t>(b) / height),
+                         static_cast<int32_t>(n_min + static_cast<int64_t>(b) % height)}));
+            out.offsets.push_back(sum);
             sum += c;
         }
-        counts[bins] = sum;
+        out.offsets.push_back(sum);
         for (std::size_t k = 0; k < v; ++k)
         {
             const uint32_t slot = counts[bin[k]]++;
             out.cells[slot] = out.tmp_z[k];
             if (keep_index) out.index[slot] = out.tmp_src[k];
         }
-        // counts[b] is now the end of bin b: the non-empty ones give the pillar offsets.
-        std::size_t p = 0;
-        uint32_t prev_end = 0;
-        for (std::size_t b = 0; b < bins; ++b)
-        {
-            const uint32_t end = counts[b];
-            if (end == prev_end) continue;  // empty bin
-            counts[p++] = prev_end;         // p <= b: only slots already read are written
-            prev_end = end;
-        }
-        counts[p] = prev_end;
-        counts.resize(p + 1);
     }
     else
     {

@@ -90,7 +90,7 @@ struct ScanPillars
 
     /** Scratch of bucketScan(), kept to be reused. */
     std::vector<int32_t> tmp_m, tmp_n, tmp_z;
-    std::vector<uint32_t> tmp_src, tmp_bin;
+    std::vector<uint32_t> tmp_src, tmp_bin, tmp_counts;
 };
 
 /** The global pillar dictionary G = {H_mn : P_mn} of the paper, with its update and queries.
