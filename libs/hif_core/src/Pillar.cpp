@@ -68,38 +68,25 @@ void updatePillar(Pillar& g, const Span* t, std::size_t nt, const LogOddsModel& 
     const std::size_t ng = g.intervals.size();
     // LHP (Eq. 15): b_base is the lowest height the scan saw in this pillar.
     const int32_t base = nt > 0 ? t[0].lo : std::numeric_limits<int32_t>::max();
-    // The model in locals: stores to the output (floats) could alias its fields otherwise.
-    const float hit = model.hit, miss = model.miss, lmin = model.lmin, lmax = model.lmax;
-    const float new_unseen = model.empty_init + hit, new_seen = empty_prior + hit;
-    const bool lhp = model.lhp, hhp = model.hhp, unseen_prior = model.unseen_prior;
 
-    // The sweep below yields at most 2 (ng + nt) - 1 pieces. The last one is held in registers
-    // and written when the next one differs (lossless join of touching equal beliefs).
+    // The sweep below yields at most 2 (ng + nt) - 1 pieces. They are written field by field
+    // through a pointer: building each Interval as a temporary and copying it costs a
+    // store-forwarding stall per piece.
     if (out.size() < 2 * (ng + nt)) out.resize(2 * (ng + nt));  // grows, never shrinks
     Interval* const o = out.data();
     std::size_t count = 0;
-    bool pending = false;
-    int32_t p_lo = 0, p_hi = 0;
-    float p_l = 0.0f;
     auto emit = [&](int32_t lo, int32_t hi, float l)
     {
-        l = l < lmin ? lmin : (l > lmax ? lmax : l);  // Eq. 17-18
-        if (pending && p_hi == lo && p_l == l)
+        l = model.clamp(l);  // Eq. 17-18
+        if (count > 0 && o[count - 1].hi == lo && o[count - 1].logodds == l)
         {
-            p_hi = hi;  // lossless: both halves carry the same belief
+            o[count - 1].hi = hi;  // lossless: both halves carry the same belief
             return;
         }
-        if (pending)
-        {
-            o[count].lo = p_lo;
-            o[count].hi = p_hi;
-            o[count].logodds = p_l;
-            ++count;
-        }
-        pending = true;
-        p_lo = lo;
-        p_hi = hi;
-        p_l = l;
+        o[count].lo = lo;
+        o[count].hi = hi;
+        o[count].logodds = l;
+        ++count;
     };
 
     // Sweep over the sorted endpoints of both sets (Eq. 9): between two consecutive endpoints
@@ -122,29 +109,24 @@ void updatePillar(Pillar& g, const Span* t, std::size_t nt, const LogOddsModel& 
         const auto lo = static_cast<int32_t>(x);
         const auto hi = static_cast<int32_t>(next);
         if (in_g && in_t)
-            emit(lo, hi, gi[i].logodds + hit);  // Eq. 12: seen again
+            emit(lo, hi, gi[i].logodds + model.hit);  // Eq. 12: seen again
         else if (in_g)
         {
-            if (lhp && hi <= base)
+            if (model.lhp && hi <= base)
                 emit(lo, hi, gi[i].logodds);  // Eq. 16: below b_base, unknown: keep
-            else if (hhp && lo >= ceiling)
+            else if (model.hhp && lo >= ceiling)
                 emit(lo, hi, gi[i].logodds);  // HHP: above the field of view, unknown: keep
             else
-                emit(lo, hi, gi[i].logodds + miss);  // Eq. 13: expected, not seen
+                emit(lo, hi, gi[i].logodds + model.miss);  // Eq. 13: expected, not seen
         }
         else if (in_t)
             // Eq. 14: new, prior p_empty; unseen-height prior: p_empty_init where no scan
             // could look before.
-            emit(lo, hi, unseen_prior && lo >= seen_top ? new_unseen : new_seen);
+            emit(lo, hi,
+                 (model.unseen_prior && lo >= seen_top ? model.empty_init : empty_prior) +
+                     model.hit);
         // neither: not covered by any observation, discarded.
         x = next;
-    }
-    if (pending)
-    {
-        o[count].lo = p_lo;
-        o[count].hi = p_hi;
-        o[count].logodds = p_l;
-        ++count;
     }
     if (count > max_intervals) count = capIntervals(o, count, max_intervals);
     // A copy, not a swap: the pillar keeps its own storage, so steady state allocates nothing.
