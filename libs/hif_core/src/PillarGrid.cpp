@@ -10,7 +10,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-// Pass 1 of bucketScan() has an AVX version, chosen at run time, on x86-64 with GCC or Clang.
+// The per-point passes (bucketScan()'s first pass, the see-through range image) have an AVX
+// version, chosen at run time (cpuHasAvx()), on x86-64 with GCC or Clang.
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define HIF_X86_AVX 1
 #include <immintrin.h>
@@ -34,6 +35,15 @@ namespace
 // Points closer than this (horizontally) to the sensor are ignored when measuring the top
 // beam's elevation: there, range noise makes z / range unreliable.
 constexpr double kMinRangeForElevation = 2.0;
+
+#if HIF_X86_AVX
+/** True when the CPU runs AVX (asked once). */
+bool cpuHasAvx()
+{
+    static const bool has_avx = __builtin_cpu_supports("avx");
+    return has_avx;
+}
+#endif
 
 /** floor(v) for v >= -2^31, saturated at INT32_MAX (a gap or padding wider than any map). */
 int32_t floorCells(double v)
@@ -287,8 +297,7 @@ void imageCells(const float* x, const float* y, const float* z, std::size_t n, i
                 float* ranges)
 {
 #if HIF_X86_AVX
-    static const bool has_avx = __builtin_cpu_supports("avx");
-    if (has_avx)
+    if (cpuHasAvx())
     {
         imageCellsAvx(x, y, z, n, cells, ranges);
         return;
@@ -519,7 +528,7 @@ struct QuantizeChunk
             st.n_lo = std::min(st.n_lo, fn);
             st.n_hi = std::max(st.n_hi, fn);
             const double r2 = sx * sx + sy * sy;
-            if (r2 > kMinR2) st.top = std::max(st.top, sz * std::abs(sz) / std::max(r2, kMinR2));
+            if (r2 > kMinR2) st.top = std::max(st.top, sz * std::abs(sz) / r2);
             const bool repeat = st.have_prev && m == st.prev_m && n == st.prev_n && zc == st.prev_z;
             if constexpr (kKeepIndex) repeats[i] = repeat;
             st.have_prev = true;
@@ -684,8 +693,8 @@ struct QuantizeChunk
         st.v = i0;
         std::size_t i = i0;
 #if HIF_X86_AVX
-        static const bool has_avx = __builtin_cpu_supports("avx");
-        if (has_avx) i = runAvx<kKeepIndex>(pts, i0, i1, m_out, n_out, z_out, src_out, repeats, st);
+        if (cpuHasAvx())
+            i = runAvx<kKeepIndex>(pts, i0, i1, m_out, n_out, z_out, src_out, repeats, st);
 #endif
         runScalar<kKeepIndex>(pts, i, i1, m_out, n_out, z_out, src_out, repeats, st);
         ChunkSummary ch;
