@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
+# A digest of everything hif-clean writes, to show that a change of code leaves its outputs
+# byte for byte the same: the synthetic street (30 scans) and the real KITTI clips 01 and 08
+# (../shared/data/kitti, or $HIF_KITTI_DIR), each cleaned offline and online with the shipped
+# configs. Prints one line per output file (sha256, then the file) and, from summary.json, the
+# counts (timings left out: they differ from run to run).
+#
+#   bash scripts/output-digest.sh > before.txt     # on the old code
+#   bash scripts/output-digest.sh > after.txt      # on the new code
+#   diff before.txt after.txt
+#
+# Work files go to ${HIF_DIGEST_DIR:-build/digest}/ and are replaced on every run.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BIN=${HIF_BUILD_DIR:-build}/apps
+ROOT=${HIF_DIGEST_DIR:-build/digest}
+KITTI=${HIF_KITTI_DIR:-../shared/data/kitti}
+mkdir -p "$ROOT"
+
+inputs=(synthetic)
+"$BIN/hif-synthetic-kitti" -o "$ROOT/synthetic/seq" -n 30 --overwrite > /dev/null 2>&1
+for seq in 01 08; do
+  if [ -d "$KITTI/sequences/$seq" ]; then
+    inputs+=("$seq")
+    mkdir -p "$ROOT/$seq"
+    ln -sfn "$(realpath "$KITTI/sequences/$seq")" "$ROOT/$seq/seq"
+  else
+    echo "[output-digest] $KITTI/sequences/$seq missing: left out" >&2
+  fi
+done
+
+for name in "${inputs[@]}"; do
+  d=$ROOT/$name
+  "$BIN/kitti2rawlog" -i "$d/seq" -o "$d/scans.rawlog" --overwrite > /dev/null 2>&1
+  for mode in offline online; do
+    flag=""; [ $mode = online ] && flag=--online
+    rm -rf "${d:?}/$mode"
+    "$BIN/hif-clean" -i "$d/scans.rawlog" -o "$d/$mode" $flag -q > /dev/null
+    (cd "$d/$mode" && find . -type f ! -name summary.json | LC_ALL=C sort | xargs sha256sum) \
+      | sed "s|  \./|  $name/$mode/|"
+    grep -E '"(scans|points_in|points_kept|points_removed|points_invalid|pillars|intervals)"' \
+      "$d/$mode/summary.json" | tr -d ' ,' | sed "s|^|$name/$mode/summary.json |"
+  done
+done
