@@ -18,14 +18,15 @@
 
 #include "hif/CHeightIntervalMap.h"
 #include "hif/PillarGrid.h"
-#include "hif/apps/KittiSequence.h"
+#include "hif/detail/InsertSteps.h"
+#include "hif/io/KittiSequence.h"
 
 namespace
 {
 /** The scans of one sequence, in memory (sensor frame), with their poses. */
 struct Scans
 {
-    std::vector<mrpt::maps::CPointsMapXYZI> clouds;
+    std::vector<hif::io::Cloud> clouds;
     std::vector<Eigen::Isometry3d> poses;
     std::string error;  // why the sequence could not be loaded
 
@@ -33,8 +34,7 @@ struct Scans
     [[nodiscard]] hif::PointsView view(std::size_t i) const
     {
         const auto& c = clouds[i];
-        return {c.getPointsBufferRef_x().data(), c.getPointsBufferRef_y().data(),
-                c.getPointsBufferRef_z().data(), c.size()};
+        return {c.x.data(), c.y.data(), c.z.data(), c.size()};
     }
 };
 
@@ -52,12 +52,10 @@ const Scans& scans()
         Scans r;
         try
         {
-            const hif::apps::KittiSequence seq(sequenceDir());
-            r.clouds.resize(seq.size());
+            const hif::io::KittiSequence seq(sequenceDir());
             for (std::size_t i = 0; i < seq.size(); ++i)
             {
-                if (!r.clouds[i].loadFromKittiVelodyneFile(seq.scanFile(i)))
-                    throw std::runtime_error("cannot read " + seq.scanFile(i));
+                r.clouds.push_back(seq.readScan(i));
                 r.poses.push_back(seq.pose(i));
             }
         }
@@ -97,7 +95,7 @@ const hif::PillarGrid& fullMap()
 void BM_LowerBound(benchmark::State& state)
 {
     if (!haveScans(state)) return;
-    const hif::Params prm;
+    const hif::GridGeometry prm;
     std::vector<uint64_t> keys;
     std::size_t k = 0, points = 0;
     for (auto _ : state)
@@ -163,7 +161,8 @@ void BM_InsertOfflineConfig(benchmark::State& state)
     mrpt::maps::TSetOfMetricMapInitializers inits;
     inits.loadFromConfigFile(cfg, "map");
     const mrpt::maps::CMultiMetricMap maps(inits);
-    hif::PillarGrid g(maps.mapByClass<hif::CHeightIntervalMap>()->params());
+    const auto map = maps.mapByClass<hif::CHeightIntervalMap>();
+    hif::PillarGrid g(map->geometry(), map->params());
     g.setThreads(static_cast<std::size_t>(state.range(0)));
     insertInSequence(state, g);
 }
@@ -182,30 +181,30 @@ void BM_InsertStep(benchmark::State& state)
     const auto step = state.range(0);
     hif::PillarGrid g;
     g.setThreads(static_cast<std::size_t>(state.range(1)));
-    hif::ScanPillars sp;
+    hif::detail::ScanBuckets sp;
     std::size_t k = 0, pillars = 0;
     for (auto _ : state)
     {
         const auto v = scans().view(k);
         const auto& T = scans().poses[k];
         if (step == 0)
-            g.bucketScan(v, T, sp);
+            hif::detail::bucketPoints(g, v, T, sp);
         else
         {
             state.PauseTiming();
-            g.bucketScan(v, T, sp);
-            if (step == 2) g.buildIntervals(sp);
+            hif::detail::bucketPoints(g, v, T, sp);
+            if (step == 2) hif::detail::buildSpans(g, sp);
             state.ResumeTiming();
-            if (step == 1) g.buildIntervals(sp);
+            if (step == 1) hif::detail::buildSpans(g, sp);
         }
         // Keep the map growing as in BM_Insert (not timed for steps 0 and 1).
         if (step == 2)
-            g.mergeScan(sp);
+            hif::detail::updatePillars(g, sp);
         else
         {
             state.PauseTiming();
-            if (step == 0) g.buildIntervals(sp);
-            g.mergeScan(sp);
+            if (step == 0) hif::detail::buildSpans(g, sp);
+            hif::detail::updatePillars(g, sp);
             state.ResumeTiming();
         }
         benchmark::DoNotOptimize(sp.cells.data());
@@ -234,7 +233,15 @@ void BM_InsertThroughMrpt(benchmark::State& state)
     std::vector<mrpt::poses::CPose3D> poses;
     for (std::size_t i = 0; i < scans().size(); ++i)
     {
-        obs[i].pointcloud = mrpt::maps::CPointsMapXYZI::Create(scans().clouds[i]);
+        const hif::io::Cloud& c = scans().clouds[i];
+        auto cloud = mrpt::maps::CPointsMapXYZI::Create();
+        cloud->resize(c.size());
+        for (std::size_t k = 0; k < c.size(); ++k)
+        {
+            cloud->setPointFast(k, c.x[k], c.y[k], c.z[k]);
+            cloud->setPointIntensity(k, c.intensity[k]);
+        }
+        obs[i].pointcloud = cloud;
         poses.emplace_back(mrpt::math::CMatrixDouble44(scans().poses[i].matrix()));
     }
     hif::CHeightIntervalMap map;

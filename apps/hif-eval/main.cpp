@@ -15,8 +15,8 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "hif/apps/Labels.h"
-#include "hif/apps/Util.h"
+#include "hif/apps/Cli.h"
+#include "hif/io/Labels.h"
 
 namespace fs = std::filesystem;
 
@@ -48,7 +48,7 @@ struct Cli
     TCLAP::SwitchArg quiet{"q", "quiet", "Print the total only, not every scan", cmd};
 };
 
-nlohmann::ordered_json toJson(const hif::apps::Scores& s)
+nlohmann::ordered_json toJson(const hif::io::Scores& s)
 {
     nlohmann::ordered_json j;
     j["SA"] = s.sa();
@@ -77,7 +77,7 @@ int run(Cli& cli)
     std::sort(names.begin(), names.end());
     if (names.empty()) throw std::runtime_error("no .label files in '" + pred_dir + "'");
 
-    hif::apps::Scores total;
+    hif::io::Scores total;
     std::size_t without_truth = 0, scored = 0;
     nlohmann::ordered_json scans = nlohmann::ordered_json::array();
     if (!cli.quiet.getValue())
@@ -92,15 +92,15 @@ int run(Cli& cli)
             continue;
         }
         ++scored;
-        const auto truth = hif::apps::readLabels(truth_file);
-        const auto pred = hif::apps::readLabels((fs::path(pred_dir) / name).string());
+        const auto truth = hif::io::readLabels(truth_file);
+        const auto pred = hif::io::readLabels((fs::path(pred_dir) / name).string());
         if (truth.size() != pred.size())
             throw std::runtime_error("'" + (fs::path(pred_dir) / name).string() + "' has " +
                                      std::to_string(pred.size()) + " points, '" + truth_file +
                                      "' has " + std::to_string(truth.size()));
-        hif::apps::Scores s;
+        hif::io::Scores s;
         for (std::size_t i = 0; i < truth.size(); ++i)
-            s.add(truth[i], hif::apps::isPredictedMoving(pred[i]));
+            s.add(truth[i], hif::io::isPredictedMoving(pred[i]));
         total += s;
         auto js = toJson(s);
         js["scan"] = fs::path(name).stem().string();

@@ -18,9 +18,9 @@
 #include <random>
 #include <vector>
 
-#include "hif/apps/KittiSequence.h"
-#include "hif/apps/Labels.h"
-#include "hif/apps/Util.h"
+#include "hif/apps/Cli.h"
+#include "hif/io/KittiSequence.h"
+#include "hif/io/Labels.h"
 
 namespace fs = std::filesystem;
 
@@ -290,18 +290,18 @@ int run(Cli& cli)
                 pts.insert(pts.end(), {float(p.x()), float(p.y()), float(p.z()),
                                        float(0.1 + 0.01 * (h.label % 50))});
                 labels.push_back(h.label | (instance << 16));
-                moving_points += hif::apps::isMovingClass(h.label) ? 1 : 0;
+                moving_points += hif::io::isMovingClass(h.label) ? 1 : 0;
             }
         }
         total_points += labels.size();
-        const std::string name = hif::apps::frameName(i);
+        const std::string name = hif::io::frameName(i);
         std::ofstream bin(dir + "/velodyne/" + name + ".bin", std::ios::binary);
         bin.write(reinterpret_cast<const char*>(pts.data()),
                   static_cast<std::streamsize>(pts.size() * sizeof(float)));
         if (!bin)
             throw std::runtime_error("Error writing to target file '" + dir + "/velodyne/" + name +
                                      ".bin'");
-        hif::apps::writeLabels(dir + "/labels/" + name + ".label", labels);
+        hif::io::writeLabels(dir + "/labels/" + name + ".label", labels);
         progress.update(i + 1);
     }
     progress.finish();

@@ -18,9 +18,9 @@
 #include <iostream>
 #include <memory>
 
-#include "hif/apps/KittiSequence.h"
-#include "hif/apps/Labels.h"
-#include "hif/apps/Util.h"
+#include "hif/apps/Cli.h"
+#include "hif/io/KittiSequence.h"
+#include "hif/io/Labels.h"
 
 namespace
 {
@@ -61,7 +61,7 @@ struct Cli
 int run(Cli& cli)
 {
     const std::string tag = "[kitti2rawlog]";
-    const hif::apps::KittiSequence seq(cli.input.getValue());
+    const hif::io::KittiSequence seq(cli.input.getValue());
     const std::size_t n = seq.size();
     const std::size_t first = cli.first.getValue();
     const std::size_t last =
@@ -88,7 +88,7 @@ int run(Cli& cli)
         if (seq.hasLabels() && std::filesystem::exists(seq.labelFile(i)))
         {
             ++labelled;
-            const std::size_t nl = hif::apps::readLabels(seq.labelFile(i)).size();
+            const std::size_t nl = hif::io::readLabels(seq.labelFile(i)).size();
             if (nl != pts)
                 throw std::runtime_error("'" + seq.labelFile(i) + "' has " + std::to_string(nl) +
                                          " labels for " + std::to_string(pts) + " points in '" +

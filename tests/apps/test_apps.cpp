@@ -19,9 +19,9 @@
 #include <sstream>
 
 #include "hif/CHeightIntervalMap.h"
-#include "hif/apps/CloudFiles.h"
-#include "hif/apps/KittiSequence.h"
-#include "hif/apps/Labels.h"
+#include "hif/io/CloudFiles.h"
+#include "hif/io/KittiSequence.h"
+#include "hif/io/Labels.h"
 #include "kitti_fixture.h"
 
 namespace fs = std::filesystem;
@@ -91,12 +91,12 @@ TEST(HifEval, AgreesWithAHandCountedExample)
     // Scan 0: truth  road(40) road car(10) moving-car(252) unlabeled(0) moving-person(254|id 3)
     //         pred   9        251  9       251             251          9
     // Scored: 3 static (kept 2), 2 dynamic (removed 1); the unlabeled point is ignored.
-    hif::apps::writeLabels(d + "/labels/000000.label", {40, 40, 10, 252, 0, 254u | (3u << 16)});
-    hif::apps::writeLabels(d + "/pred/000000.label", {9, 251, 9, 251, 251, 9});
+    hif::io::writeLabels(d + "/labels/000000.label", {40, 40, 10, 252, 0, 254u | (3u << 16)});
+    hif::io::writeLabels(d + "/pred/000000.label", {9, 251, 9, 251, 251, 9});
     // Scan 1: truth  outlier(1) building(50) moving-bicyclist(253)
     //         pred   251        9            253 (a moving class also counts as removed)
-    hif::apps::writeLabels(d + "/labels/000001.label", {1, 50, 253});
-    hif::apps::writeLabels(d + "/pred/000001.label", {251, 9, 253});
+    hif::io::writeLabels(d + "/labels/000001.label", {1, 50, 253});
+    hif::io::writeLabels(d + "/pred/000001.label", {251, 9, 253});
     // Totals: static 4, kept 3 -> SA 75; dynamic 3, removed 2 -> DA 66.67;
     // AA = sqrt(75 * 66.67) = 70.71; HA = 2 * 75 * 66.67 / 141.67 = 70.59.
     const auto r = runApp("hif-eval", "--labels " + d + "/labels --predictions " + d +
@@ -121,7 +121,7 @@ TEST(HifEval, AgreesWithAHandCountedExample)
         << r.output;
 
     // A prediction whose size differs from its labels is an error naming both files.
-    hif::apps::writeLabels(d + "/pred/000001.label", {251, 9});
+    hif::io::writeLabels(d + "/pred/000001.label", {251, 9});
     const auto bad = runApp("hif-eval", "--labels " + d + "/labels --predictions " + d + "/pred");
     EXPECT_NE(bad.code, 0);
     EXPECT_NE(bad.output.find("000001.label' has 2 points"), std::string::npos) << bad.output;
@@ -182,13 +182,12 @@ TEST_F(SyntheticPipeline, OfflineAndOnlineCleaningScoreAndWriteEverything)
         // One prediction per scan, one label per input point.
         std::size_t labels = 0;
         for (int i = 0; i < 20; ++i)
-            labels +=
-                hif::apps::readLabels(out + "/predictions/" + hif::apps::frameName(i) + ".label")
-                    .size();
+            labels += hif::io::readLabels(out + "/predictions/" + hif::io::frameName(i) + ".label")
+                          .size();
         EXPECT_EQ(labels, in);
         // The clouds hold exactly the kept and the removed points.
-        EXPECT_EQ(hif::apps::readPcd(out + "/static_map.pcd").x.size(), kept);
-        EXPECT_EQ(hif::apps::readPcd(out + "/removed.pcd").x.size(), removed);
+        EXPECT_EQ(hif::io::readPcd(out + "/static_map.pcd").x.size(), kept);
+        EXPECT_EQ(hif::io::readPcd(out + "/removed.pcd").x.size(), removed);
         std::ifstream ply(out + "/static_map.ply");
         std::string line, vertex;
         while (std::getline(ply, line) && line != "end_header")
@@ -222,7 +221,7 @@ TEST_F(SyntheticPipeline, ThreadsAndHeldScansGiveIdenticalResults)
     };
     for (int i = 0; i < 20; ++i)
     {
-        const std::string f = "/predictions/" + hif::apps::frameName(i) + ".label";
+        const std::string f = "/predictions/" + hif::io::frameName(i) + ".label";
         ASSERT_EQ(bytes(a + f), bytes(b + f)) << f;
     }
     EXPECT_EQ(bytes(a + "/static_map.pcd"), bytes(b + "/static_map.pcd"));
@@ -308,7 +307,7 @@ TEST_F(SyntheticPipeline, DynamicMapFolderLayoutIsReadAndItsOutputWritten)
     // points and the sensor pose in VIEWPOINT.
     const std::string dm = fresh("dynamicmap");
     fs::create_directories(dm + "/pcd");
-    const hif::apps::KittiSequence seq(root_ + "/seq");
+    const hif::io::KittiSequence seq(root_ + "/seq");
     for (std::size_t i = 0; i < seq.size(); ++i)
     {
         std::ifstream bin(seq.scanFile(i), std::ios::binary);
@@ -316,7 +315,7 @@ TEST_F(SyntheticPipeline, DynamicMapFolderLayoutIsReadAndItsOutputWritten)
         bin.read(reinterpret_cast<char*>(p.data()), static_cast<std::streamsize>(p.size() * 4));
         const Eigen::Isometry3d T = seq.pose(i);
         const Eigen::Quaterniond q(T.linear());
-        std::ofstream f(dm + "/pcd/" + hif::apps::frameName(i) + ".pcd");
+        std::ofstream f(dm + "/pcd/" + hif::io::frameName(i) + ".pcd");
         f << "VERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\n"
           << "WIDTH " << p.size() / 4 << "\nHEIGHT 1\nVIEWPOINT " << T.translation().x() << " "
           << T.translation().y() << " " << T.translation().z() << " " << q.w() << " " << q.x()
@@ -332,7 +331,7 @@ TEST_F(SyntheticPipeline, DynamicMapFolderLayoutIsReadAndItsOutputWritten)
     ASSERT_TRUE(fs::exists(dm + "/hif_output.pcd")) << r.output;
     const json sum = readJson(dm + "/out/summary.json");
     EXPECT_EQ(sum["scans"], 20);
-    EXPECT_EQ(hif::apps::readPcd(dm + "/hif_output.pcd").x.size(),
+    EXPECT_EQ(hif::io::readPcd(dm + "/hif_output.pcd").x.size(),
               sum["points_kept"].get<std::size_t>());
     const auto e = runApp("hif-eval", "--labels " + root_ + "/seq/labels --predictions " + dm +
                                           "/out/predictions --json " + dm + "/scores.json");

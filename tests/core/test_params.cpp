@@ -1,24 +1,29 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file   test_params.cpp
- * @brief  Params defaults (the paper's values) and validation messages.
+ * @brief  GridGeometry and Params: defaults (the paper's values), validation messages, and the
+ *         field tables behind .ini files, serialization and equality.
  */
 #include <gtest/gtest.h>
 
 #include <functional>
 #include <limits>
+#include <set>
 #include <stdexcept>
 #include <string>
 
+#include "field_helpers.h"
 #include "hif/Params.h"
 
+using hif::GridGeometry;
 using hif::Params;
 
 TEST(Params, DefaultsAreThePapersAndValid)
 {
     const Params p;
-    EXPECT_DOUBLE_EQ(p.pillar_size, 1.0);  // Sec. IV-A
-    EXPECT_DOUBLE_EQ(p.p_min, 0.1);        // Eq. 17
+    EXPECT_DOUBLE_EQ(GridGeometry().pillar_size, 1.0);  // Sec. IV-A
+    EXPECT_NO_THROW(GridGeometry().validate());
+    EXPECT_DOUBLE_EQ(p.p_min, 0.1);  // Eq. 17
     EXPECT_DOUBLE_EQ(p.p_max, 0.9);
     EXPECT_GT(p.alpha, 0.5);  // Eq. 6
     EXPECT_LT(p.beta, 0.5);
@@ -28,9 +33,10 @@ TEST(Params, DefaultsAreThePapersAndValid)
 
 namespace
 {
-void expectRejected(const std::function<void(Params&)>& change, const std::string& field)
+template <typename S>
+void expectRejected(const std::function<void(S&)>& change, const std::string& field)
 {
-    Params p;
+    S p;
     change(p);
     try
     {
@@ -49,31 +55,93 @@ void expectRejected(const std::function<void(Params&)>& change, const std::strin
 TEST(Params, EachBadFieldIsNamed)
 {
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    expectRejected([](Params& p) { p.pillar_size = 0; }, "pillar_size");
-    expectRejected([](Params& p) { p.pillar_size = -1; }, "pillar_size");
-    expectRejected([nan](Params& p) { p.pillar_size = nan; }, "pillar_size");
-    expectRejected([nan](Params& p) { p.origin_x = nan; }, "origin_x");
-    expectRejected([](Params& p) { p.origin_y = std::numeric_limits<double>::infinity(); },
-                   "origin_y");
-    expectRejected([](Params& p) { p.height_resolution = 0; }, "height_resolution");
-    expectRejected([](Params& p) { p.merge_gap = -0.1; }, "merge_gap");
-    expectRejected([](Params& p) { p.interval_padding = -0.1; }, "interval_padding");
-    expectRejected([](Params& p) { p.alpha = 0.5; }, "alpha");
-    expectRejected([](Params& p) { p.alpha = 1.0; }, "alpha");
-    expectRejected([](Params& p) { p.beta = 0.5; }, "beta");
-    expectRejected([](Params& p) { p.beta = 0.0; }, "beta");
-    expectRejected([](Params& p) { p.p_min = 0.0; }, "p_min");
-    expectRejected([](Params& p) { p.p_max = 1.0; }, "p_max");
-    expectRejected(
+    using G = GridGeometry;
+    expectRejected<G>([](G& g) { g.pillar_size = 0; }, "pillar_size");
+    expectRejected<G>([](G& g) { g.pillar_size = -1; }, "pillar_size");
+    expectRejected<G>([nan](G& g) { g.pillar_size = nan; }, "pillar_size");
+    expectRejected<G>([nan](G& g) { g.origin_x = nan; }, "origin_x");
+    expectRejected<G>([](G& g) { g.origin_y = std::numeric_limits<double>::infinity(); },
+                      "origin_y");
+    expectRejected<G>([](G& g) { g.height_resolution = 0; }, "height_resolution");
+    expectRejected<Params>([](Params& p) { p.merge_gap = -0.1; }, "merge_gap");
+    expectRejected<Params>([](Params& p) { p.interval_padding = -0.1; }, "interval_padding");
+    expectRejected<Params>([](Params& p) { p.alpha = 0.5; }, "alpha");
+    expectRejected<Params>([](Params& p) { p.alpha = 1.0; }, "alpha");
+    expectRejected<Params>([](Params& p) { p.beta = 0.5; }, "beta");
+    expectRejected<Params>([](Params& p) { p.beta = 0.0; }, "beta");
+    expectRejected<Params>([](Params& p) { p.p_min = 0.0; }, "p_min");
+    expectRejected<Params>([](Params& p) { p.p_max = 1.0; }, "p_max");
+    expectRejected<Params>(
         [](Params& p)
         {
             p.p_min = 0.6;
             p.p_max = 0.4;
         },
         "p_min");
-    expectRejected([](Params& p) { p.p_empty_init = 0.95; }, "p_empty_init");
-    expectRejected([](Params& p) { p.static_threshold = 1.0; }, "static_threshold");
-    expectRejected([](Params& p) { p.max_intervals_per_pillar = 0; }, "max_intervals_per_pillar");
+    expectRejected<Params>([](Params& p) { p.p_empty_init = 0.95; }, "p_empty_init");
+    expectRejected<Params>([](Params& p) { p.static_threshold = 1.0; }, "static_threshold");
+    expectRejected<Params>([](Params& p) { p.max_intervals_per_pillar = 0; },
+                           "max_intervals_per_pillar");
+}
+
+TEST(Params, MessagesSayWhatIsAllowed)
+{
+    Params p;
+    p.alpha = 0.5;
+    try
+    {
+        p.validate();
+        FAIL() << "alpha 0.5 accepted";
+    }
+    catch (const std::invalid_argument& e)
+    {
+        EXPECT_STREQ(e.what(), "hif::Params: invalid alpha = 0.5 (must be in (0.5, 1))");
+    }
+    // A check across the grid and the parameters: the see-through window is bounded.
+    GridGeometry g;
+    g.pillar_size = 0.1;
+    p = Params();
+    p.see_through_range = 300.0;  // valid alone, but 3000 pillars wide
+    EXPECT_NO_THROW(p.validate());
+    EXPECT_THROW(p.validateWith(g), std::invalid_argument);
+    g.pillar_size = 0.2;
+    EXPECT_NO_THROW(p.validateWith(g));
+}
+
+namespace
+{
+/** For every field of S: its name is unique, it has a doc, and changing it alone (to another
+ *  valid value) makes the struct unequal to the default and keeps it valid. A new field gets
+ *  this for free from its line in the table. */
+template <typename S>
+void checkEveryField()
+{
+    std::set<std::string> names;
+    std::size_t count = 0;
+    hif::forEachField<S>(
+        [&](const hif::Field<S>& f, auto member)
+        {
+            ++count;
+            EXPECT_TRUE(names.insert(f.name).second) << "duplicate name " << f.name;
+            EXPECT_GT(std::string(f.doc).size(), 5u) << f.name << " has no doc";
+            S s;
+            hif::test::changeField(s, f, member);
+            EXPECT_NE(s, S()) << f.name << " is not compared";
+            EXPECT_NO_THROW(s.validate()) << f.name;
+        });
+    EXPECT_EQ(count, S::fields().size());
+}
+}  // namespace
+
+TEST(FieldTables, EveryFieldIsNamedComparedAndValid)
+{
+    checkEveryField<GridGeometry>();
+    checkEveryField<Params>();
+    // All changed at once (what the serialization and .ini round trips use) is valid too.
+    const Params all = hif::test::everyFieldChanged<Params>();
+    EXPECT_NO_THROW(all.validateWith(hif::test::everyFieldChanged<GridGeometry>()));
+    hif::forEachField<Params>([&](const hif::Field<Params>& f, auto member)
+                              { EXPECT_NE(all.*member, Params().*member) << f.name; });
 }
 
 TEST(Params, EqualityIsFieldByField)

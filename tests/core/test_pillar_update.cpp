@@ -8,10 +8,11 @@
 
 #include <random>
 
-#include "hif/Pillar.h"
 #include "hif/PillarGrid.h"
+#include "hif/detail/PillarUpdate.h"
 
 using namespace hif;
+using namespace hif::detail;
 
 namespace
 {
@@ -39,8 +40,7 @@ LogOddsModel model(bool lhp = true)
 
 void update(Pillar& g, const std::vector<Span>& t, bool lhp = true, std::size_t cap = 1000)
 {
-    std::vector<Interval> scratch;
-    updatePillar(g, t.data(), t.size(), model(lhp), cap, scratch);
+    PillarUpdater(model(lhp), cap).update(g, t.data(), t.size());
 }
 }  // namespace
 
@@ -64,12 +64,12 @@ namespace
 std::vector<Span> spansOf(const std::vector<int32_t>& cells, int32_t gap, int32_t pad)
 {
     std::vector<Span> s(cells.size());
-    s.resize(buildSpans(cells.data(), cells.size(), gap, pad, s.data()));
+    s.resize(spansFromCells(cells.data(), cells.size(), gap, pad, s.data()));
     return s;
 }
 }  // namespace
 
-TEST(BuildSpans, MergesByGapAndPads)
+TEST(SpansFromCells, MergesByGapAndPads)
 {
     const std::vector<int32_t> cells = {0, 1, 2, 5, 6, 20};
     std::vector<Span> s = spansOf(cells, 0, 0);
@@ -226,8 +226,7 @@ TEST(PillarUpdate, IntervalCountStaysBoundedOverThousandsOfScans)
     for (const std::size_t cap : {std::size_t{8}, std::size_t{32}})
     {
         Pillar g = pillar(0.5, {});
-        std::vector<Interval> scratch;
-        const LogOddsModel m = model();
+        PillarUpdater updater(model(), cap);
         std::size_t peak = 0;
         for (int scan = 0; scan < 5000; ++scan)
         {
@@ -240,7 +239,7 @@ TEST(PillarUpdate, IntervalCountStaysBoundedOverThousandsOfScans)
             }
             std::sort(cells.begin(), cells.end());
             const std::vector<Span> spans = spansOf(cells, 0, 0);
-            updatePillar(g, spans.data(), spans.size(), m, cap, scratch);
+            updater.update(g, spans.data(), spans.size());
             peak = std::max(peak, g.intervals.size());
             for (std::size_t q = 1; q < g.intervals.size(); ++q)
                 ASSERT_LE(g.intervals[q - 1].hi, g.intervals[q].lo) << "overlap at scan " << scan;
@@ -311,22 +310,24 @@ TEST(PillarGrid, SetPillarRejectsBrokenInvariants)
     EXPECT_EQ(grid.intervalCount(), 2u);
 }
 
-TEST(PillarGrid, SetParamsKeepsGeometryOnceFilled)
+TEST(PillarGrid, SetParamsKeepsThePillarsAndRejectsBadValues)
 {
-    PillarGrid grid;
-    Params p = grid.params();
-    p.pillar_size = 2.0;
-    EXPECT_NO_THROW(grid.setParams(p));  // empty: geometry may change
+    GridGeometry geo;
+    geo.pillar_size = 2.0;
+    PillarGrid grid(geo);
     const std::vector<float> x = {0.5f}, y = {0.5f}, z = {0.0f};
     grid.insertScan({x.data(), y.data(), z.data(), 1});
-    p.pillar_size = 1.0;
-    EXPECT_THROW(grid.setParams(p), std::invalid_argument);
-    p.pillar_size = 2.0;
+    Params p = grid.params();
     p.static_threshold = 0.6;
     grid.setParams(p);
+    EXPECT_EQ(grid.pillarCount(), 1u);
     EXPECT_FALSE(grid.isStatic(0.5, 0.5, 0.0));  // 0.571 < 0.6 now
     p.alpha = 2.0;
     EXPECT_THROW(grid.setParams(p), std::invalid_argument);
+    EXPECT_EQ(grid.params().alpha, Params().alpha);  // unchanged by the rejected call
+    EXPECT_EQ(grid.geometry(), geo);
+    geo.pillar_size = 0;
+    EXPECT_THROW(PillarGrid{geo}, std::invalid_argument);
 }
 
 // ---- Beyond the paper (Params::high_height_preservation, unseen_height_prior) ----
@@ -342,17 +343,17 @@ TEST(HighHeightPreservation, IntervalsAboveTheCeilingKeepTheirProbability)
     // see above cell 30: the wall top is unknown to it and keeps 0.7.
     Pillar a = pillar(0.5, {iv(0, 5, 0.7), iv(40, 50, 0.7)});
     Pillar b = a;
-    std::vector<Interval> scratch;
+    PillarUpdater ours(oursModel(), 1000), paper(model(), 1000);
     const std::vector<Span> t{{0, 5}};
-    updatePillar(a, t.data(), t.size(), oursModel(), 1000, scratch, /*ceiling=*/30);
+    ours.update(a, t.data(), t.size(), /*ceiling=*/30);
     ASSERT_EQ(a.intervals.size(), 2u);
     EXPECT_NEAR(probOf(a.intervals[1]), 0.7, kTol);
     // Without the rule (the paper), it is "expected but not seen": 0.28 / (0.28 + 0.165).
-    updatePillar(b, t.data(), t.size(), model(), 1000, scratch, /*ceiling=*/30);
+    paper.update(b, t.data(), t.size(), /*ceiling=*/30);
     EXPECT_NEAR(probOf(b.intervals[1]), 0.629213483, kTol);
     // An interval that straddles the ceiling is partly visible: it gets the miss.
     Pillar c = pillar(0.5, {iv(0, 5, 0.7), iv(25, 35, 0.7)});
-    updatePillar(c, t.data(), t.size(), oursModel(), 1000, scratch, /*ceiling=*/30);
+    ours.update(c, t.data(), t.size(), /*ceiling=*/30);
     EXPECT_NEAR(probOf(c.intervals[1]), 0.629213483, kTol);
 }
 
@@ -360,9 +361,9 @@ TEST(UnseenHeightPrior, NewIntervalsAboveSeenTopStartFromPEmptyInit)
 {
     Pillar g = pillar(0.3, {});
     g.seen_top = 20;
-    std::vector<Interval> scratch;
+    PillarUpdater ours(oursModel(), 1000);
     const std::vector<Span> t{{10, 15}, {25, 30}};
-    updatePillar(g, t.data(), t.size(), oursModel(), 1000, scratch, /*ceiling=*/40);
+    ours.update(g, t.data(), t.size(), /*ceiling=*/40);
     ASSERT_EQ(g.intervals.size(), 2u);
     // Below seen_top: prior p_empty = 0.3 (Eq. 14): 0.18 / 0.495.
     EXPECT_NEAR(probOf(g.intervals[0]), 0.363636364, kTol);
@@ -370,7 +371,7 @@ TEST(UnseenHeightPrior, NewIntervalsAboveSeenTopStartFromPEmptyInit)
     EXPECT_NEAR(probOf(g.intervals[1]), 0.571428571, kTol);
     // The scan could see up to cell 40: seen_top grows, and never shrinks.
     EXPECT_EQ(g.seen_top, 40);
-    updatePillar(g, t.data(), t.size(), oursModel(), 1000, scratch, /*ceiling=*/35);
+    ours.update(g, t.data(), t.size(), /*ceiling=*/35);
     EXPECT_EQ(g.seen_top, 40);
 }
 
@@ -399,7 +400,7 @@ TEST(RangeAdaptiveIntervals, FarPillarsMergeHeightsOneBeamApart)
     Params paper = Params::paper();
     for (const Params& prm : {ours, paper})
     {
-        PillarGrid grid(prm);
+        PillarGrid grid(GridGeometry(), prm);
         grid.insertScan({x.data(), y.data(), z.data(), x.size()});
         const Pillar* p = grid.findPillar({25, 0});
         ASSERT_NE(p, nullptr);
@@ -414,7 +415,7 @@ TEST(HighHeightPreservation, GridMeasuresTheTopBeamFromTheScan)
     // Scan 1, from 30 m away: a wall 3 m high, seen whole. Then scans from 5 m away, whose top
     // beam (measured from their own points) cannot see the wall above about 0.46 m.
     Params prm;
-    PillarGrid grid(prm);
+    PillarGrid grid(GridGeometry(), prm);
     std::vector<float> x, y, z;
     for (int k = 0; k <= 30; ++k)
     {
@@ -433,7 +434,7 @@ TEST(HighHeightPreservation, GridMeasuresTheTopBeamFromTheScan)
     EXPECT_TRUE(grid.isStatic(30.5, 0.5, 2.5)) << "the wall top, out of view, was kept";
     Params paper = prm;
     paper.high_height_preservation = false;
-    PillarGrid g2(paper);
+    PillarGrid g2(GridGeometry(), paper);
     g2.insertScan({x.data(), y.data(), z.data(), x.size()});
     for (int s = 0; s < 5; ++s) g2.insertScan({x2.data(), y2.data(), z2.data(), x2.size()}, T);
     EXPECT_FALSE(g2.isStatic(30.5, 0.5, 2.5)) << "without HHP the wall top is lost";
@@ -462,7 +463,7 @@ bool carStaticAfter(double see_through_range, const std::vector<double>& returns
 {
     Params prm;
     prm.see_through_range = see_through_range;
-    PillarGrid grid(prm);
+    PillarGrid grid(GridGeometry(), prm);
     std::vector<float> x, y, z;
     for (double h = -1.2; h <= -0.2; h += 0.05)
     {

@@ -7,7 +7,7 @@
 
 #include <set>
 
-#include "hif/PillarGrid.h"
+#include "hif/GridGeometry.h"
 #include "hif/PillarIndex.h"
 
 using namespace hif;
@@ -62,13 +62,12 @@ TEST(PillarKey, HashMixesAllBits)
     EXPECT_NE(pillarHash({1, 2}), pillarHash({2, 1}));
 }
 
-TEST(PillarGrid, PillarOfUsesOriginAndSize)
+TEST(GridGeometry, PillarOfUsesOriginAndSize)
 {
-    Params p;
-    p.pillar_size = 2.0;
-    p.origin_x = 1.0;
-    p.origin_y = -1.0;
-    const PillarGrid g(p);
+    GridGeometry g;
+    g.pillar_size = 2.0;
+    g.origin_x = 1.0;
+    g.origin_y = -1.0;
     EXPECT_EQ(*g.pillarOf(0.99, -1.0), (PillarIndex{-1, 0}));
     EXPECT_EQ(*g.pillarOf(3.0, -3.01), (PillarIndex{1, -2}));
     EXPECT_EQ(*g.heightCellOf(-0.01), -1);

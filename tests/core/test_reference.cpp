@@ -14,8 +14,10 @@
 #include <set>
 
 #include "hif/PillarGrid.h"
+#include "hif/detail/InsertSteps.h"
 
 using namespace hif;
+using hif::detail::bayesFilter;
 
 namespace
 {
@@ -33,7 +35,7 @@ struct RefPillar
 class ReferenceHif
 {
 public:
-    explicit ReferenceHif(const Params& p) : prm_(p) {}
+    ReferenceHif(const GridGeometry& g, const Params& p) : geo_(g), prm_(p) {}
 
     void insert(const std::vector<std::array<double, 3>>& pts)
     {
@@ -42,15 +44,15 @@ public:
         for (const auto& q : pts)
         {
             const int m =
-                static_cast<int>(std::floor((q[0] - prm_.origin_x) * (1.0 / prm_.pillar_size)));
+                static_cast<int>(std::floor((q[0] - geo_.origin_x) * (1.0 / geo_.pillar_size)));
             const int n =
-                static_cast<int>(std::floor((q[1] - prm_.origin_y) * (1.0 / prm_.pillar_size)));
+                static_cast<int>(std::floor((q[1] - geo_.origin_y) * (1.0 / geo_.pillar_size)));
             cells[{m, n}].insert(
-                static_cast<int>(std::floor(q[2] * (1.0 / prm_.height_resolution))));
+                static_cast<int>(std::floor(q[2] * (1.0 / geo_.height_resolution))));
         }
-        const int gap = static_cast<int>(std::lround(prm_.merge_gap / prm_.height_resolution));
+        const int gap = static_cast<int>(std::lround(prm_.merge_gap / geo_.height_resolution));
         const int pad =
-            static_cast<int>(std::lround(prm_.interval_padding / prm_.height_resolution));
+            static_cast<int>(std::lround(prm_.interval_padding / geo_.height_resolution));
         for (auto& [key, occ] : cells)
         {
             // Eq. 4: fill gaps of at most `gap` empty cells, pad, then take maximal runs.
@@ -134,6 +136,7 @@ private:
         g.p_empty = clip(bayesFilter(g.p_empty, 1 - a, 1 - b));  // Eq. 8
     }
 
+    GridGeometry geo_;
     Params prm_;
     std::map<std::pair<int, int>, RefPillar> pillars_;
 };
@@ -159,7 +162,7 @@ std::vector<std::array<double, 3>> randomScan(std::mt19937& rng, int n, double s
     return pts;
 }
 
-void compareAll(const PillarGrid& grid, const ReferenceHif& ref, const Params& prm)
+void compareAll(const PillarGrid& grid, const ReferenceHif& ref)
 {
     ASSERT_EQ(grid.pillarCount(), ref.pillars().size());
     for (const auto& [key, rp] : ref.pillars())
@@ -169,9 +172,10 @@ void compareAll(const PillarGrid& grid, const ReferenceHif& ref, const Params& p
         EXPECT_NEAR(logistic(gp->logodds_empty), rp.p_empty, 1e-5);
         for (int z = -40; z < 140; ++z)
         {
-            const double x = prm.origin_x + (key.first + 0.5) * prm.pillar_size;
-            const double y = prm.origin_y + (key.second + 0.5) * prm.pillar_size;
-            const double zz = (z + 0.5) * prm.height_resolution;
+            const GridGeometry& g = grid.geometry();
+            const double x = g.origin_x + (key.first + 0.5) * g.pillar_size;
+            const double y = g.origin_y + (key.second + 0.5) * g.pillar_size;
+            const double zz = (z + 0.5) * g.height_resolution;
             ASSERT_NEAR(grid.staticProbability(x, y, zz), ref.prob(key.first, key.second, z), 1e-5)
                 << "pillar (" << key.first << ", " << key.second << ") cell " << z;
         }
@@ -187,11 +191,12 @@ TEST_P(AgainstReference, RandomScansGiveTheSameProbabilitiesEverywhere)
 {
     Params prm = Params::paper();  // the reference implements the paper as written
     prm.low_height_preservation = GetParam();
-    prm.origin_x = 0.25;
-    prm.origin_y = -0.4;
     prm.max_intervals_per_pillar = 1000000;  // the reference does not cap
-    PillarGrid grid(prm);
-    ReferenceHif ref(prm);
+    GridGeometry geo;
+    geo.origin_x = 0.25;
+    geo.origin_y = -0.4;
+    PillarGrid grid(geo, prm);
+    ReferenceHif ref(geo, prm);
     std::mt19937 rng(GetParam() ? 11 : 12);
     for (int scan = 0; scan < 30; ++scan)
     {
@@ -208,7 +213,7 @@ TEST_P(AgainstReference, RandomScansGiveTheSameProbabilitiesEverywhere)
         for (std::size_t i = 0; i < x.size(); ++i) as_float.push_back({x[i], y[i], z[i]});
         grid.insertScan({x.data(), y.data(), z.data(), x.size()});
         ref.insert(as_float);
-        compareAll(grid, ref, prm);
+        compareAll(grid, ref);
         if (HasFatalFailure()) return;
     }
 }
@@ -224,9 +229,9 @@ TEST(AgainstReference, DenseTallAndFarScansOnOneAndThreeThreads)
 {
     Params prm = Params::paper();
     prm.max_intervals_per_pillar = 1000000;
-    PillarGrid grid(prm), grid3(prm);
+    PillarGrid grid(GridGeometry(), prm), grid3(GridGeometry(), prm);
     grid3.setThreads(3);
-    ReferenceHif ref(prm);
+    ReferenceHif ref(GridGeometry(), prm);
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> u(0, 1);
     const float nan = std::numeric_limits<float>::quiet_NaN();
@@ -253,7 +258,7 @@ TEST(AgainstReference, DenseTallAndFarScansOnOneAndThreeThreads)
         EXPECT_EQ(st.points_invalid, pts.size() - as_float.size());
         grid3.insertScan(view);
         ref.insert(as_float);
-        compareAll(grid, ref, prm);
+        compareAll(grid, ref);
         if (HasFatalFailure()) return;
         ASSERT_TRUE(grid == grid3) << "3 threads differ from 1 after scan " << scan;
 
@@ -268,7 +273,7 @@ TEST(AgainstReference, DenseTallAndFarScansOnOneAndThreeThreads)
 }
 
 // A scan in LiDAR order (ring by ring, azimuth by azimuth), so that most points repeat the
-// pillar and height cell of the point before them (bucketScan() does not store those), with
+// pillar and height cell of the point before them (bucketPoints() does not store those), with
 // NaN and far out-of-range points among them, placed by a rotation and a translation, and
 // point counts that are not multiples of the vector width: the map must agree with the
 // reference fed with every valid point, and every point's class with isStatic() of its world
@@ -277,10 +282,11 @@ TEST(AgainstReference, LidarOrderedScansWithRepeatsOnATransform)
 {
     Params prm = Params::paper();
     prm.max_intervals_per_pillar = 1000000;
-    prm.origin_x = 0.3;
-    PillarGrid grid(prm), grid3(prm);
+    GridGeometry geo;
+    geo.origin_x = 0.3;
+    PillarGrid grid(geo, prm), grid3(geo, prm);
     grid3.setThreads(3);
-    ReferenceHif ref(prm);
+    ReferenceHif ref(geo, prm);
     const float nan = std::numeric_limits<float>::quiet_NaN();
     struct Scan
     {
@@ -321,7 +327,7 @@ TEST(AgainstReference, LidarOrderedScansWithRepeatsOnATransform)
             x[i] = 1e12f;
             valid[i] = false;
         }
-        // World positions, with the operations in the order bucketScan() uses.
+        // World positions, with the operations in the order bucketPoints() uses.
         const Eigen::Matrix3d R = T.linear();
         const Eigen::Vector3d t = T.translation();
         std::vector<std::array<double, 3>> world;
@@ -337,8 +343,8 @@ TEST(AgainstReference, LidarOrderedScansWithRepeatsOnATransform)
             if (valid[i]) valid_world.push_back(world[i]);
 
         const PointsView view{x.data(), y.data(), z.data(), x.size()};
-        ScanPillars sp;
-        grid.bucketScan(view, T, sp, true);
+        detail::ScanBuckets sp;
+        detail::bucketPoints(grid, view, T, sp, true);
         EXPECT_EQ(sp.points_valid, valid_world.size());
         EXPECT_LT(sp.entryCount() * 2, sp.points_valid) << "most points should be repeats";
 
@@ -346,7 +352,7 @@ TEST(AgainstReference, LidarOrderedScansWithRepeatsOnATransform)
         EXPECT_EQ(st.points_used, valid_world.size());
         grid3.insertScan(view, T);
         ref.insert(valid_world);
-        compareAll(grid, ref, prm);
+        compareAll(grid, ref);
         if (HasFatalFailure()) return;
         ASSERT_TRUE(grid == grid3) << "3 threads differ from 1 after scan " << scan;
 
@@ -386,7 +392,7 @@ TEST(SeeThroughMisses, SameMapOnOneAndThreeThreads)
 {
     Params prm;
     prm.see_through_range = 30.0;
-    PillarGrid g1(prm), g3(prm), off{Params()};
+    PillarGrid g1(GridGeometry(), prm), g3(GridGeometry(), prm), off;
     g3.setThreads(3);
     std::mt19937 rng(9);
     std::uniform_real_distribution<double> u(0, 1);

@@ -16,6 +16,7 @@
 
 #include <random>
 
+#include "field_helpers.h"
 #include "hif/CHeightIntervalMap.h"
 
 using hif::CHeightIntervalMap;
@@ -80,11 +81,12 @@ TEST(CHeightIntervalMapIni, CreatedThroughCMultiMetricMapWithEveryOption)
     ASSERT_TRUE(IS_CLASS(*multi.maps[0], CHeightIntervalMap));
     const auto map = multi.mapByClass<CHeightIntervalMap>();
     ASSERT_TRUE(map);
+    const hif::GridGeometry& g = map->geometry();
+    EXPECT_DOUBLE_EQ(g.pillar_size, 0.75);
+    EXPECT_DOUBLE_EQ(g.origin_x, -3.5);
+    EXPECT_DOUBLE_EQ(g.origin_y, 2.25);
+    EXPECT_DOUBLE_EQ(g.height_resolution, 0.04);
     const hif::Params p = map->params();
-    EXPECT_DOUBLE_EQ(p.pillar_size, 0.75);
-    EXPECT_DOUBLE_EQ(p.origin_x, -3.5);
-    EXPECT_DOUBLE_EQ(p.origin_y, 2.25);
-    EXPECT_DOUBLE_EQ(p.height_resolution, 0.04);
     EXPECT_DOUBLE_EQ(p.merge_gap, 0.3);
     EXPECT_DOUBLE_EQ(p.interval_padding, 0.08);
     EXPECT_DOUBLE_EQ(p.alpha, 0.7);
@@ -109,25 +111,18 @@ TEST(CHeightIntervalMapIni, CreatedThroughCMultiMetricMapWithEveryOption)
     EXPECT_EQ(map->pillarCount(), 1u);
 }
 
+// Every option, set away from its default through the field table (so an option added later
+// is covered without editing this test), survives save then load, in memory and as text.
 TEST(CHeightIntervalMapIni, OptionsSaveLoadRoundTrip)
 {
     CHeightIntervalMap::TInsertionOptions a;
+    static_cast<hif::Params&>(a) = hif::test::everyFieldChanged<hif::Params>();
     a.merge_gap = 0.1234567890123;  // more digits than "%f" keeps
-    a.interval_padding = 0.07;
-    a.alpha = 0.66;
-    a.beta = 0.41;
-    a.p_min = 0.15;
-    a.p_max = 0.85;
-    a.p_empty_init = 0.4;
-    a.low_height_preservation = false;
-    a.high_height_preservation = false;
-    a.unseen_height_prior = false;
     a.beam_spacing_deg = 0.123456789012345;
-    a.static_threshold = 0.62;
-    a.max_intervals_per_pillar = 9;
-    a.see_through_range = 33.5;
-    a.see_through_margin = 1.75;
     a.threads = 3;
+    const hif::Params defaults;
+    hif::forEachField<hif::Params>([&](const hif::Field<hif::Params>& f, auto member)
+                                   { ASSERT_NE(a.*member, defaults.*member) << f.name; });
     mrpt::config::CConfigFileMemory cfg;
     a.saveToConfigFile(cfg, "opts");
     CHeightIntervalMap::TInsertionOptions b;
@@ -135,33 +130,11 @@ TEST(CHeightIntervalMapIni, OptionsSaveLoadRoundTrip)
     // Through text too, as when the .ini is written to disk and read again.
     CHeightIntervalMap::TInsertionOptions b_text;
     b_text.loadFromConfigFile(mrpt::config::CConfigFileMemory(cfg.getContent()), "opts");
-    EXPECT_EQ(b.merge_gap, a.merge_gap);
-    EXPECT_EQ(b.interval_padding, a.interval_padding);
-    EXPECT_EQ(b.alpha, a.alpha);
-    EXPECT_EQ(b.beta, a.beta);
-    EXPECT_EQ(b.p_min, a.p_min);
-    EXPECT_EQ(b.p_max, a.p_max);
-    EXPECT_EQ(b.p_empty_init, a.p_empty_init);
-    EXPECT_EQ(b.low_height_preservation, a.low_height_preservation);
-    EXPECT_EQ(b.high_height_preservation, a.high_height_preservation);
-    EXPECT_EQ(b.unseen_height_prior, a.unseen_height_prior);
-    EXPECT_EQ(b.beam_spacing_deg, a.beam_spacing_deg);
-    EXPECT_EQ(b.static_threshold, a.static_threshold);
-    EXPECT_EQ(b.max_intervals_per_pillar, a.max_intervals_per_pillar);
-    EXPECT_EQ(b.see_through_range, a.see_through_range);
-    EXPECT_EQ(b.see_through_margin, a.see_through_margin);
+    const hif::Params& pa = a;
+    EXPECT_EQ(hif::test::differingFields<hif::Params>(pa, b), "");
+    EXPECT_EQ(hif::test::differingFields<hif::Params>(pa, b_text), "");
     EXPECT_EQ(b.threads, a.threads);
     EXPECT_EQ(b_text.threads, a.threads);
-
-    // Every field of the map's parameters goes through the options: nothing is left at its
-    // default by a missing load or save line.
-    CHeightIntervalMap m1, m2, m3;
-    m1.insertionOptions = a;
-    m2.insertionOptions = b;
-    m3.insertionOptions = b_text;
-    EXPECT_EQ(m1.params(), m2.params());
-    EXPECT_EQ(m1.params(), m3.params());
-    EXPECT_NE(m1.params(), CHeightIntervalMap().params());
 }
 
 namespace
@@ -193,12 +166,13 @@ TEST(CHeightIntervalMapIni, BadValuesAreRejectedWithSectionAndField)
     expectRejected("threads=2", "threads=0", "threads", "insertOpts");
 }
 
+// Geometry and every option away from their defaults (through the field tables, so that an
+// option added later is covered too): all of them come back.
 TEST(CHeightIntervalMapSerialization, RoundTripThroughClassFactoryIsExact)
 {
-    CHeightIntervalMap map(0.5, 0.1, -0.2, 0.02);
-    map.insertionOptions.alpha = 0.65;
-    map.insertionOptions.low_height_preservation = false;
-    map.insertionOptions.see_through_range = 12.0;
+    CHeightIntervalMap map(hif::test::everyFieldChanged<hif::GridGeometry>());
+    static_cast<hif::Params&>(map.insertionOptions) = hif::test::everyFieldChanged<hif::Params>();
+    map.insertionOptions.see_through_range = 12.0;  // so that the misses run
     map.genericMapParams.enableSaveAs3DObject = false;
     insertRandomScans(map, 25);
     ASSERT_GT(map.intervalCount(), 100u);
@@ -212,7 +186,9 @@ TEST(CHeightIntervalMapSerialization, RoundTripThroughClassFactoryIsExact)
     const auto copy = std::dynamic_pointer_cast<CHeightIntervalMap>(obj);
     ASSERT_TRUE(copy) << "the class factory did not produce a hif::CHeightIntervalMap";
     EXPECT_TRUE(copy->grid() == map.grid());
-    EXPECT_EQ(copy->params(), map.params());
+    EXPECT_EQ(hif::test::differingFields<hif::Params>(copy->params(), map.params()), "");
+    EXPECT_EQ(hif::test::differingFields<hif::Params>(copy->insertionOptions, map.params()), "");
+    EXPECT_EQ(copy->geometry(), map.geometry());
     EXPECT_FALSE(copy->genericMapParams.enableSaveAs3DObject);
 
     // Serializing the copy gives the same bytes (deterministic order).
@@ -233,7 +209,7 @@ TEST(CHeightIntervalMapSerialization, RoundTripThroughClassFactoryIsExact)
 // options take their defaults (off), everything else is read as saved.
 TEST(CHeightIntervalMapSerialization, Version0MapsStillLoad)
 {
-    CHeightIntervalMap map(0.5, 0.1, -0.2, 0.02);
+    CHeightIntervalMap map(hif::GridGeometry{0.5, 0.1, -0.2, 0.02});
     map.insertionOptions.alpha = 0.65;
     map.insertionOptions.max_intervals_per_pillar = 12;
     insertRandomScans(map, 10);
@@ -241,7 +217,7 @@ TEST(CHeightIntervalMapSerialization, Version0MapsStillLoad)
 
     // The version-0 layout, field by field: geometry, insertion options without the two
     // see-through ones, generic map parameters, then the pillars.
-    const hif::Params p = map.params();
+    const hif::GridGeometry& p = map.geometry();
     const auto& o = map.insertionOptions;
     mrpt::io::CMemoryStream buf;
     auto out = mrpt::serialization::archiveFrom(buf);

@@ -11,18 +11,18 @@
 #include <iostream>
 
 #include "hif/CHeightIntervalMap.h"
-#include "hif/apps/KittiSequence.h"
-#include "hif/apps/Labels.h"
+#include "hif/io/KittiSequence.h"
+#include "hif/io/Labels.h"
 #include "kitti_fixture.h"
 
 using namespace hif;
-using hif::apps::KittiSequence;
+using hif::io::KittiSequence;
 
 namespace
 {
 struct OfflineRun
 {
-    apps::Scores scores;
+    io::Scores scores;
     double mean_intervals = 0;
     std::size_t max_intervals = 0, pillars = 0;
 };
@@ -30,7 +30,7 @@ struct OfflineRun
 OfflineRun runOffline(const KittiSequence& seq, int scans, int scored, const Params& prm)
 {
     OfflineRun r;
-    PillarGrid grid(prm);
+    PillarGrid grid(GridGeometry(), prm);
     std::vector<mrpt::maps::CPointsMapXYZI> clouds(scans);
     for (int i = 0; i < scans; ++i)
     {
@@ -47,7 +47,7 @@ OfflineRun runOffline(const KittiSequence& seq, int scans, int scored, const Par
         grid.classify({c.getPointsBufferRef_x().data(), c.getPointsBufferRef_y().data(),
                        c.getPointsBufferRef_z().data(), c.size()},
                       dyn, seq.pose(i));
-        const auto labels = apps::readLabels(seq.labelFile(i));
+        const auto labels = io::readLabels(seq.labelFile(i));
         EXPECT_EQ(labels.size(), dyn.size()) << seq.labelFile(i);
         for (std::size_t k = 0; k < std::min(labels.size(), dyn.size()); ++k)
             r.scores.add(labels[k], dyn[k] != 0);

@@ -153,15 +153,30 @@ TEST(CHeightIntervalMap, ClassifyAndLikelihoodFollowTheIntervals)
     EXPECT_FLOAT_EQ(map.compute3DMatchingRatio(&query, CPose3D(0, 0, 1.0, 0, 0, 0), {}), 0.0f);
 }
 
-TEST(CHeightIntervalMap, OptionChangesApplyAtTheNextQuery)
+// Queries never change the map: an option takes effect at the next insertion (or
+// applyOptions()), and an invalid one is reported there, not by a query.
+TEST(CHeightIntervalMap, OptionChangesApplyAtTheNextInsertion)
 {
     CHeightIntervalMap map;
     ASSERT_TRUE(map.insertObservation(*cloud({{0.5, 0.5, 0.0}})));
     EXPECT_TRUE(map.isStatic({0.5, 0.5, 0.0}));  // 0.571
     map.insertionOptions.static_threshold = 0.6;
+    EXPECT_TRUE(map.isStatic({0.5, 0.5, 0.0})) << "a query applied the option";
+    EXPECT_EQ(map.params().static_threshold, 0.5);
+    map.applyOptions();
     EXPECT_FALSE(map.isStatic({0.5, 0.5, 0.0}));
+    map.insertionOptions.static_threshold = 0.5;
+    ASSERT_TRUE(map.insertObservation(*cloud({{0.5, 0.5, 0.0}})));
+    EXPECT_EQ(map.params().static_threshold, 0.5);
+
     map.insertionOptions.alpha = 0.4;  // invalid
-    EXPECT_THROW((void)map.isStatic({0.5, 0.5, 0.0}), std::invalid_argument);
+    EXPECT_NO_THROW((void)map.isStatic({0.5, 0.5, 0.0}));
+    EXPECT_THROW(map.insertObservation(*cloud({{0.5, 0.5, 0.0}})), std::invalid_argument);
+    EXPECT_THROW(map.applyOptions(), std::invalid_argument);
+    EXPECT_EQ(map.params().alpha, 0.6) << "a rejected option was kept";
+    map.insertionOptions.alpha = 0.6;
+    map.insertionOptions.threads = 0;
+    EXPECT_THROW(map.applyOptions(), std::invalid_argument);
 }
 
 TEST(CHeightIntervalMap, CopyIsDeepAndEqual)

@@ -1,32 +1,30 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file   Params.h
- * @brief  All parameters of Height Interval Filtering, with the paper's defaults.
+ * @brief  The tunable parameters of Height Interval Filtering, with the paper's defaults.
  *
  * Equation numbers refer to "HIF: Height Interval Filtering for Efficient Dynamic Points
  * Removal" (see doc/algorithm.md, which also explains every choice the paper leaves open).
+ * The grid itself (pillar size, origin, height resolution) is GridGeometry: it is fixed when a
+ * map is created, while these may change between scans.
+ *
+ * A new parameter is its member below and its line in fields(); .ini files, serialization,
+ * validation, equality and hif-clean's summary follow from the table.
  */
 #pragma once
 
+#include <array>
 #include <cstddef>
-#include <string>
+
+#include "hif/FieldTable.h"
+#include "hif/GridGeometry.h"
 
 namespace hif
 {
-/** Parameters of the HIF map. Probabilities are P(static) = P(occupied by something that
- *  stays), as in the paper. Call validate() before use; PillarGrid does it in its constructor. */
+/** Parameters of the HIF update and of classification. Probabilities are P(static) =
+ *  P(occupied by something that stays), as in the paper. */
 struct Params
 {
-    /** Pillar edge length in x and y, metres (Eq. 1-2; paper: 1 m). */
-    double pillar_size = 1.0;
-    /** Global grid origin O = (x_o, y_o) on the XY plane, metres (Eq. 1). */
-    double origin_x = 0.0;
-    double origin_y = 0.0;
-
-    /** Vertical resolution, metres: interval endpoints are snapped to multiples of it, so an
-     *  interval is a run of whole height cells [b, t). Not in the paper (which keeps exact
-     *  heights); with it, overlap tests are exact and intervals per pillar are bounded. */
-    double height_resolution = 0.05;
     /** Heights of one pillar in one scan whose gap is at most this are merged into one interval
      *  (Eq. 4 construction; not specified by the paper), metres. */
     double merge_gap = 0.1;
@@ -75,7 +73,8 @@ struct Params
      *  direction of the pillar's centre and between the interval's bottom and top, some return
      *  lies farther than the pillar by more than see_through_margin and none lies within the
      *  margin of it. Gives "empty" evidence to pillars that no later return falls in (far
-     *  cars on open roads, whose vacated pillars are never hit again). */
+     *  cars on open roads, whose vacated pillars are never hit again). At most 2000 pillars
+     *  wide (see validateWith()). */
     double see_through_range = 0.0;
     /** Distance, metres, that a return must lie beyond a pillar to count as passing through
      *  it; returns within it of the pillar veto the miss. */
@@ -88,15 +87,55 @@ struct Params
      *  merged (lossless); above this count, the closest neighbours are merged too (lossy). */
     std::size_t max_intervals_per_pillar = 16;
 
-    /** The paper's method as written: the three options above off. */
+    /** The fields, for loops over them (see FieldTable.h). */
+    [[nodiscard]] static const std::array<Field<Params>, 15>& fields();
+
+    /** The paper's method as written: the additions above (HHP, the unseen-height prior,
+     *  range-adaptive intervals; see-through misses are off by default) off. */
     [[nodiscard]] static Params paper();
 
     /** Throws std::invalid_argument naming the first invalid field and its value. */
     void validate() const;
+    /** validate(), and the checks that involve the grid: see_through_range spans at most 2000
+     *  pillars. */
+    void validateWith(const GridGeometry& geometry) const;
 
     /** Field-by-field equality (exact). */
-    friend bool operator==(const Params& a, const Params& b);
+    friend bool operator==(const Params& a, const Params& b) { return fieldsEqual(a, b); }
     friend bool operator!=(const Params& a, const Params& b) { return !(a == b); }
 };
+
+inline const std::array<Field<Params>, 15>& Params::fields()
+{
+    using P = Params;
+    static const std::array<Field<P>, 15> table{{
+        {"merge_gap", &P::merge_gap, Bounds::atLeast(0), 0,
+         "Max gap between heights of one interval [m]"},
+        {"interval_padding", &P::interval_padding, Bounds::atLeast(0), 0,
+         "Widening of scan intervals [m]"},
+        {"alpha", &P::alpha, Bounds::open(0.5, 1), 0, "P_S when observed (Eq. 6), in (0.5, 1)"},
+        {"beta", &P::beta, Bounds::open(0, 0.5), 0, "P_D when observed (Eq. 6), in (0, 0.5)"},
+        {"p_min", &P::p_min, Bounds::open(0, 1), 0, "Lower clipping bound (Eq. 17)"},
+        {"p_max", &P::p_max, Bounds::open(0, 1), 0, "Upper clipping bound (Eq. 17)"},
+        {"p_empty_init", &P::p_empty_init, Bounds::open(0, 1), 0, "p_empty of a new pillar"},
+        {"low_height_preservation", &P::low_height_preservation, Bounds::any(), 0,
+         "LHP (Eq. 15-16)"},
+        {"high_height_preservation", &P::high_height_preservation, Bounds::any(), 0,
+         "Keep intervals above the field of view (not in the paper)"},
+        {"unseen_height_prior", &P::unseen_height_prior, Bounds::any(), 0,
+         "New intervals above every seen height start at p_empty_init (not in the paper)"},
+        {"beam_spacing_deg", &P::beam_spacing_deg, Bounds::closedOpen(0, 10), 0,
+         "Range-adaptive intervals: vertical beam spacing [deg], 0 = off (not in the paper)"},
+        {"see_through_range", &P::see_through_range, Bounds::closed(0, 1000), 1,
+         "See-through misses within this distance [m], 0 = off (not in the paper)"},
+        {"see_through_margin", &P::see_through_margin, Bounds::atLeast(0), 1,
+         "A return this far beyond a pillar passed through it [m]"},
+        {"static_threshold", &P::static_threshold, Bounds::open(0, 1), 0,
+         "Static when P(static) >= this"},
+        {"max_intervals_per_pillar", &P::max_intervals_per_pillar, Bounds::atLeast(1), 0,
+         "Bound on intervals per pillar"},
+    }};
+    return table;
+}
 
 }  // namespace hif

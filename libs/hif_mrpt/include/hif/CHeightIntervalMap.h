@@ -48,20 +48,25 @@ public:
     /** @name User API
      * @{ */
 
-    /** Grid geometry is fixed at construction (Eq. 1): pillar edge and origin in metres, and
-     *  the vertical resolution of interval endpoints. */
-    explicit CHeightIntervalMap(double pillar_size = Params().pillar_size,
-                                double origin_x = Params().origin_x,
-                                double origin_y = Params().origin_y,
-                                double height_resolution = Params().height_resolution);
+    /** The grid geometry is fixed at construction (Eq. 1). Throws std::invalid_argument if
+     *  `geometry` or `params` is invalid. */
+    explicit CHeightIntervalMap(const GridGeometry& geometry = GridGeometry(),
+                                const Params& params = Params());
 
     /** P(static) at a world point (see hif::PillarGrid::staticProbability()). */
     [[nodiscard]] double staticProbability(const mrpt::math::TPoint3D& p) const;
-    /** staticProbability(p) >= insertionOptions.static_threshold. */
+    /** staticProbability(p) >= the static_threshold in effect. */
     [[nodiscard]] bool isStatic(const mrpt::math::TPoint3D& p) const;
     /** Classifies points given in the world frame: isDynamic[i] = 1 unless point i is static.
      *  Returns the counts. */
     ClassifyStats classify(const mrpt::maps::CPointsMap& worldPoints,
+                           std::vector<uint8_t>& isDynamic) const;
+    /** Classifies the points of an observation taken at `robotPose`, placed in the world
+     *  exactly as insertObservation() places them (robotPose (+) sensor pose): isDynamic[i] =
+     *  1 unless point i is static, in the observation's point order. Throws
+     *  std::invalid_argument for an observation type the map cannot insert. */
+    ClassifyStats classify(const mrpt::obs::CObservation& obs,
+                           const mrpt::poses::CPose3D& robotPose,
                            std::vector<uint8_t>& isDynamic) const;
 
     [[nodiscard]] std::size_t pillarCount() const { return grid_.pillarCount(); }
@@ -69,10 +74,15 @@ public:
     /** What the last successful insertion did (points used/invalid, pillars updated/created). */
     [[nodiscard]] const InsertStats& lastInsertStats() const { return last_insert_; }
 
-    /** The core map, for read access (pillars, intervals). */
-    [[nodiscard]] const PillarGrid& grid() const;
-    /** All parameters in effect: creation geometry plus insertionOptions. */
-    [[nodiscard]] Params params() const;
+    /** The core map, for read access (pillars, intervals, statistics). */
+    [[nodiscard]] const PillarGrid& grid() const { return grid_; }
+    [[nodiscard]] const GridGeometry& geometry() const { return grid_.geometry(); }
+    /** The parameters in effect: insertionOptions as of the last insertion or applyOptions(). */
+    [[nodiscard]] const Params& params() const { return grid_.params(); }
+
+    /** Makes changes to insertionOptions take effect now, instead of at the next insertion.
+     *  Throws std::invalid_argument naming the first invalid option. */
+    void applyOptions();
 
     /** Observation points in the world frame, for an observation taken at `robotPose`
      *  (robotPose (+) the observation's sensor pose). Returns false for unsupported types. */
@@ -85,57 +95,28 @@ public:
     /** @name Options
      * @{ */
 
-    /** Insertion and classification parameters; same names and meaning as hif::Params (see
-     *  doc/algorithm.md). Changes take effect at the next insertion or query. */
-    class TInsertionOptions : public mrpt::config::CLoadableOptions
+    /** Insertion and classification parameters: hif::Params (see doc/algorithm.md), with the
+     *  same names in .ini files, plus the thread count. Changes take effect at the next
+     *  insertion (or applyOptions()); queries use the parameters in effect (params()). */
+    class TInsertionOptions : public mrpt::config::CLoadableOptions, public Params
     {
     public:
-        /** Heights merged into one interval when their gap is at most this, m (Default: 0.1) */
-        double merge_gap = Params().merge_gap;
-        /** Each scan interval widened by this below and above, m (Default: 0.05) */
-        double interval_padding = Params().interval_padding;
-        /** P_S when observed, Eq. 6, in (0.5, 1) (Default: 0.6) */
-        double alpha = Params().alpha;
-        /** P_D when observed, Eq. 6, in (0, 0.5) (Default: 0.45) */
-        double beta = Params().beta;
-        /** Lower clipping bound of probabilities, Eq. 17 (Default: 0.1) */
-        double p_min = Params().p_min;
-        /** Upper clipping bound of probabilities, Eq. 17 (Default: 0.9) */
-        double p_max = Params().p_max;
-        /** p_empty of a pillar seen for the first time (Default: 0.5) */
-        double p_empty_init = Params().p_empty_init;
-        /** Low-Height Preservation, Eq. 15-16 (Default: true) */
-        bool low_height_preservation = Params().low_height_preservation;
-        /** Keep intervals above the scan's field of view (ours; Default: true) */
-        bool high_height_preservation = Params().high_height_preservation;
-        /** New intervals above every height seen so far start at p_empty_init (ours;
-         *  Default: true) */
-        bool unseen_height_prior = Params().unseen_height_prior;
-        /** Range-adaptive intervals: vertical beam spacing, degrees; 0 = the paper's fixed
-         *  merge_gap/interval_padding (ours; Default: 0.44, for the HDL-64E) */
-        double beam_spacing_deg = Params().beam_spacing_deg;
-        /** See-through misses within this horizontal distance of the sensor, m; 0 = off, the
-         *  paper (ours; Default: 0) */
-        double see_through_range = Params().see_through_range;
-        /** A return this far beyond a pillar passed through it; nearer ones veto, m (Default:
-         *  2.5) */
-        double see_through_margin = Params().see_through_margin;
-        /** Static when P(static) >= this (Default: 0.5) */
-        double static_threshold = Params().static_threshold;
-        /** Bound on intervals per pillar (Default: 16) */
-        uint64_t max_intervals_per_pillar = Params().max_intervals_per_pillar;
         /** Threads for insertion and classification, >= 1; any count gives the same map. A
          *  property of the machine, not of the map: read from and written to .ini files but
          *  not serialized with the map (Default: 1) */
         uint64_t threads = 1;
 
-        /** Loads every field; throws if the result is invalid, naming the section and field. */
+        /** Loads every field; throws std::invalid_argument if the result is invalid, naming
+         *  the section and the field. */
         void loadFromConfigFile(const mrpt::config::CConfigFileBase& source,
                                 const std::string& section) override;
         void saveToConfigFile(mrpt::config::CConfigFileBase& target,
                               const std::string& section) const override;
+        /** The parameters (not the thread count), in the layout of serialization version
+         *  `version` (see Field::since_version). */
         void writeToStream(mrpt::serialization::CArchive& out) const;
-        /** Reads what writeToStream() wrote; `version` is the map's serialization version. */
+        /** Reads what writeToStream() wrote in serialization version `version`; parameters
+         *  newer than it take their defaults. */
         void readFromStream(mrpt::serialization::CArchive& in, uint8_t version);
     };
     TInsertionOptions insertionOptions;
@@ -160,21 +141,14 @@ public:
     /** @} */
 
     MAP_DEFINITION_START(CHeightIntervalMap)
-    /** Pillar edge, m (Default: 1.0) */
-    double pillar_size = Params().pillar_size;
-    /** Grid origin, m (Default: 0, 0) */
-    double origin_x = Params().origin_x;
-    double origin_y = Params().origin_y;
-    /** Vertical resolution of interval endpoints, m (Default: 0.05) */
-    double height_resolution = Params().height_resolution;
+    /** Pillar size, origin and height resolution (section `_creationOpts`). */
+    hif::GridGeometry geometry;
+    /** Section `_insertOpts`. */
     CHeightIntervalMap::TInsertionOptions insertionOpts;
     MAP_DEFINITION_END(CHeightIntervalMap)
 
 private:
-    /** Applies insertionOptions to the core if they changed (throws if they are invalid). */
-    void syncParams() const;
-
-    mutable PillarGrid grid_;
+    PillarGrid grid_;
     InsertStats last_insert_;
 
     void internal_clear() override;

@@ -1,0 +1,93 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   Cli.h
+ * @brief  Small helpers shared by the apps: progress line, memory, timing statistics, output
+ *         folders.
+ */
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <exception>
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace hif::apps
+{
+using Clock = std::chrono::steady_clock;
+
+/** Milliseconds since `t0`. */
+[[nodiscard]] inline double msSince(Clock::time_point t0)
+{
+    return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+/** Peak resident memory of this process so far (VmHWM), MiB; 0 if unknown. */
+[[nodiscard]] double peakRssMiB();
+
+/** Median, 90th percentile and maximum of a sample (nearest-rank); zeros when empty. */
+struct TimeStats
+{
+    double median = 0, p90 = 0, max = 0, mean = 0;
+};
+[[nodiscard]] TimeStats timeStats(std::vector<double> v);
+
+/** A one-line progress report on stderr with scans per second: rewritten in place on a
+ *  terminal, one line every 10% otherwise (logs, CI). `total` 0 means unknown length (then
+ *  no bar; off a terminal, a line every 10 s). */
+class Progress
+{
+public:
+    Progress(std::string prefix, std::string what, std::size_t total, bool enabled = true);
+    void update(std::size_t done);
+    void finish();
+
+private:
+    std::string prefix_, what_;
+    std::size_t total_;
+    bool enabled_, tty_;
+    std::chrono::steady_clock::time_point start_, last_;
+    std::size_t last_decile_ = 0;
+    std::size_t done_ = 0;
+    bool finished_ = false;
+    void print(std::size_t done, bool final_line);
+};
+
+/** Creates `dir` (and parents). Throws std::runtime_error naming it on failure. */
+void makeDirs(const std::string& dir);
+
+/** Throws std::runtime_error if `file` exists and `overwrite` is false: nothing the user has
+ *  is replaced without being asked. */
+void refuseToOverwrite(const std::string& file, bool overwrite, const std::string& flag);
+
+/** The whole main() of an app: parses the command line into a `Cli` (which holds a TCLAP
+ *  `cmd` with its arguments), calls `run(cli)`, and turns any exception into
+ *  "<tag> error: <what>" on stderr and exit code 1. MRPT's TCLAP reports a bad command line
+ *  and --help / --version itself and returns false from parse(): then the app does not run,
+ *  and exits with 0 for --help / --version, 1 for a bad command line. */
+template <typename Cli, typename Run>
+int cliMain(const char* tag, int argc, char** argv, Run run)
+{
+    try
+    {
+        Cli cli;
+        if (!cli.cmd.parse(argc, argv))
+        {
+            for (int i = 1; i < argc; ++i)
+            {
+                const std::string a = argv[i];
+                if (a == "-h" || a == "--help" || a == "--version") return 0;
+            }
+            return 1;
+        }
+        return run(cli);
+    }
+    catch (const std::exception& e)
+    {
+        std::cerr << tag << " error: " << e.what() << "\n";
+        return 1;
+    }
+}
+
+}  // namespace hif::apps

@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   DynamicMapSource.cpp
+ * @brief  Scans of a DynamicMap benchmark folder: pcd/NNNNNN.pcd, points in the world frame,
+ *         sensor pose in VIEWPOINT.
+ */
+#include <mrpt/maps/CPointsMapXYZI.h>
+#include <mrpt/obs/CObservationPointCloud.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <stdexcept>
+
+#include "ScanSource.h"
+#include "hif/io/CloudFiles.h"
+
+namespace fs = std::filesystem;
+
+namespace hif::apps
+{
+namespace
+{
+class DynamicMapSource : public ScanSource
+{
+public:
+    explicit DynamicMapSource(const std::string& folder)
+    {
+        const fs::path pcd = fs::path(folder) / "pcd";
+        if (!fs::is_directory(pcd))
+            throw std::runtime_error("'" + folder +
+                                     "' is a folder without pcd/: not a DynamicMap benchmark "
+                                     "folder (hif-clean reads a rawlog, a .simplemap, or a "
+                                     "folder with pcd/NNNNNN.pcd)");
+        for (const auto& e : fs::directory_iterator(pcd))
+            if (e.path().extension() == ".pcd") files_.push_back(e.path().string());
+        std::sort(files_.begin(), files_.end());
+        if (files_.empty()) throw std::runtime_error("'" + pcd.string() + "' has no .pcd");
+    }
+
+    bool next(Scan& out) override
+    {
+        if (pos_ >= files_.size()) return false;
+        const io::PcdCloud pcd = io::readPcd(files_[pos_++]);
+        // The benchmark's clouds are in the world frame; the map takes sensor-frame points and
+        // the sensor pose (VIEWPOINT), so bring them back to the sensor frame.
+        const Eigen::Isometry3d inv = pcd.viewpoint.inverse();
+        auto cloud = mrpt::maps::CPointsMapXYZI::Create();
+        cloud->resize(pcd.size());
+        for (std::size_t i = 0; i < pcd.size(); ++i)
+        {
+            const Eigen::Vector3d p = inv * Eigen::Vector3d(pcd.x[i], pcd.y[i], pcd.z[i]);
+            cloud->setPointFast(i, static_cast<float>(p.x()), static_cast<float>(p.y()),
+                                static_cast<float>(p.z()));
+            cloud->setPointIntensity(i, pcd.intensity[i]);
+        }
+        auto obs = mrpt::obs::CObservationPointCloud::Create();
+        obs->sensorLabel = "LIDAR";
+        obs->pointcloud = cloud;
+        out.obs = obs;
+        out.robot_pose = mrpt::poses::CPose3D::FromHomogeneousMatrix(pcd.viewpoint.matrix());
+        return true;
+    }
+
+    void rewind() override { pos_ = 0; }
+    [[nodiscard]] std::size_t knownSize() const override { return files_.size(); }
+    [[nodiscard]] bool isDynamicMapFolder() const override { return true; }
+
+private:
+    std::vector<std::string> files_;
+    std::size_t pos_ = 0;  ///< next file
+};
+}  // namespace
+
+std::unique_ptr<ScanSource> openDynamicMapFolder(const std::string& folder)
+{
+    return std::make_unique<DynamicMapSource>(folder);
+}
+
+}  // namespace hif::apps

@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   Outputs.cpp
+ * @brief  Classification of a scan and its files.
+ */
+#include "Outputs.h"
+
+#include <mrpt/maps/CPointsMapXYZI.h>
+#include <mrpt/obs/CObservationPointCloud.h>
+
+#include <cmath>
+
+#include "hif/io/KittiSequence.h"
+#include "hif/io/Labels.h"
+
+namespace
+{
+/** World points of a scan and their intensities (0 when the scan has none). */
+void worldPoints(const hif::apps::Scan& scan, std::vector<float>& x, std::vector<float>& y,
+                 std::vector<float>& z, std::vector<float>& intensity)
+{
+    scan.obs->load();
+    if (!hif::CHeightIntervalMap::observationToWorldPoints(*scan.obs, scan.robot_pose, x, y, z))
+        throw std::runtime_error("unsupported observation type " +
+                                 std::string(scan.obs->GetRuntimeClass()->className));
+    intensity.assign(x.size(), 0.0f);
+    if (const auto* pc = dynamic_cast<const mrpt::obs::CObservationPointCloud*>(scan.obs.get()))
+        if (const auto* xyzi =
+                dynamic_cast<const mrpt::maps::CPointsMapXYZI*>(pc->pointcloud.get()))
+            for (std::size_t i = 0; i < x.size() && i < xyzi->size(); ++i)
+                intensity[i] = xyzi->getPointIntensity_fast(i);
+}
+}  // namespace
+
+Outputs::Outputs(const std::string& dir, std::size_t first_frame,
+                 std::vector<std::string> static_files)
+    : kept_cloud_(std::move(static_files)),
+      removed_cloud_({dir + "/removed.ply", dir + "/removed.pcd"}),
+      pred_dir_(dir + "/predictions"),
+      first_frame_(first_frame)
+{
+    hif::apps::makeDirs(pred_dir_);
+}
+
+void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::apps::Scan& scan,
+                               std::size_t k)
+{
+    auto& [x, y, z, intensity] = buf_;
+    worldPoints(scan, x, y, z, intensity);
+    const auto t0 = Clock::now();
+    const hif::PointsView view{x.data(), y.data(), z.data(), x.size()};
+    std::vector<uint8_t> dyn;
+    const auto st = map.grid().classify(view, dyn);
+    classify_ms.push_back(msSince(t0));
+
+    const auto t1 = Clock::now();
+    std::vector<uint32_t> labels(dyn.size());
+    for (std::size_t i = 0; i < dyn.size(); ++i)
+    {
+        labels[i] = dyn[i] ? hif::io::kLabelMoving : hif::io::kLabelStatic;
+        if (!std::isfinite(x[i]) || !std::isfinite(y[i]) || !std::isfinite(z[i]))
+            continue;  // counted as invalid, labelled moving, not written to a cloud
+        (dyn[i] ? removed_cloud_ : kept_cloud_).add(x[i], y[i], z[i], intensity[i]);
+    }
+    hif::io::writeLabels(pred_dir_ + "/" + hif::io::frameName(first_frame_ + k) + ".label", labels);
+    write_ms_total += msSince(t1);
+    points_in += dyn.size();
+    points_kept += st.static_points;
+    points_removed += st.dynamic_points;
+    points_invalid += st.invalid_points;
+}
+
+void Outputs::close()
+{
+    kept_cloud_.close();
+    removed_cloud_.close();
+}

@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   Outputs.h
+ * @brief  What hif-clean writes per scan (predictions, kept and removed points) and the timings
+ *         of a run.
+ */
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "ScanSource.h"
+#include "hif/CHeightIntervalMap.h"
+#include "hif/apps/Cli.h"
+#include "hif/io/CloudFiles.h"
+
+using hif::apps::Clock;
+using hif::apps::msSince;
+
+/** Times of a run, milliseconds per scan unless named otherwise. */
+struct Timings
+{
+    std::vector<double> insert_ms;
+    std::vector<double> scan_ms;  ///< insert, or insert + classify online
+    std::size_t scans = 0;
+    double files_ms = 0;
+    double total_s = 0;
+};
+
+/** The per-scan outputs: predictions/NNNNNN.label, and the points into the static and removed
+ *  clouds (streamed to disk). */
+class Outputs
+{
+public:
+    /** `static_files` receive the kept points; removed.{ply,pcd} in `dir` the others. */
+    Outputs(const std::string& dir, std::size_t first_frame, std::vector<std::string> static_files);
+
+    /** Classifies scan number `k` against `map` and writes its points and predictions. */
+    void classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::apps::Scan& scan,
+                          std::size_t k);
+    /** Completes the cloud files. */
+    void close();
+
+    std::size_t points_in = 0, points_kept = 0, points_removed = 0, points_invalid = 0;
+    std::vector<double> classify_ms;
+    double write_ms_total = 0;
+
+private:
+    hif::io::CloudWriter kept_cloud_, removed_cloud_;
+    std::string pred_dir_;
+    std::size_t first_frame_;
+    std::vector<float> buf_[4];  ///< x, y, z, intensity of the current scan
+};

@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   RawlogSource.cpp
+ * @brief  Scans of an MRPT rawlog: observations, each scan after its CObservationRobotPose, or
+ *         sensory frames.
+ */
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/obs/CObservationRobotPose.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "ScanSource.h"
+
+namespace hif::apps
+{
+namespace
+{
+class RawlogSource : public ScanSource
+{
+public:
+    explicit RawlogSource(std::string file) : file_(std::move(file)) { open(); }
+
+    bool next(Scan& out) override
+    {
+        using namespace mrpt::obs;
+        if (frame_.next(out)) return counted(true);
+        auto arch = mrpt::serialization::archiveFrom(*in_);
+        for (;;)
+        {
+            mrpt::serialization::CSerializable::Ptr obj;
+            try
+            {
+                obj = arch.ReadObject();
+            }
+            catch (const mrpt::serialization::CExceptionEOF&)
+            {
+                return false;
+            }
+            catch (const std::exception& e)
+            {
+                throw std::runtime_error("rawlog '" + file_ + "' is corrupt or truncated after " +
+                                         std::to_string(scans_read_) +
+                                         " scans: " + std::string(e.what()).substr(0, 300));
+            }
+            if (auto rp = std::dynamic_pointer_cast<CObservationRobotPose>(obj))
+            {
+                pose_ = rp->pose.mean;
+                have_pose_ = true;
+                continue;
+            }
+            if (auto sf = std::dynamic_pointer_cast<CSensoryFrame>(obj))
+            {
+                // A pose inside the frame places the scans after it.
+                const auto first_scan = std::find_if(sf->begin(), sf->end(),
+                                                     [](const auto& o) { return o && isScan(*o); });
+                const auto first_pose = std::find_if(
+                    sf->begin(), sf->end(),
+                    [](const auto& o) { return o && IS_CLASS(*o, CObservationRobotPose); });
+                if (first_scan != sf->end() && !have_pose_ && first_pose > first_scan)
+                    throwNoPose();
+                frame_.assign(*sf, pose_);
+                have_pose_ = false;
+                if (frame_.next(out)) return counted(true);
+                continue;
+            }
+            auto obs = std::dynamic_pointer_cast<CObservation>(obj);
+            if (!obs || !isScan(*obs))
+            {
+                ++skipped_;
+                continue;
+            }
+            if (!have_pose_) throwNoPose();
+            out = {obs, pose_};
+            have_pose_ = false;  // every scan needs its own pose: never reuse a stale one
+            return counted(true);
+        }
+    }
+
+    void rewind() override
+    {
+        frame_.clear();
+        have_pose_ = false;
+        scans_read_ = 0;
+        skipped_ = 0;
+        open();
+    }
+
+    [[nodiscard]] std::size_t skippedObjects() const override { return skipped_; }
+
+private:
+    void open()
+    {
+        in_ = std::make_unique<mrpt::io::CFileGZInputStream>();
+        if (!in_->open(file_)) throw std::runtime_error("cannot open rawlog '" + file_ + "'");
+    }
+    bool counted(bool got)
+    {
+        scans_read_ += got ? 1 : 0;
+        return got;
+    }
+    [[noreturn]] void throwNoPose() const
+    {
+        throw std::runtime_error("rawlog '" + file_ + "': scan " + std::to_string(scans_read_) +
+                                 " has no pose before it (hif-clean needs a "
+                                 "CObservationRobotPose before each scan, as kitti2rawlog "
+                                 "writes, or a .simplemap)");
+    }
+
+    std::string file_;
+    std::unique_ptr<mrpt::io::CFileGZInputStream> in_;
+    FrameScans frame_;
+    mrpt::poses::CPose3D pose_;
+    bool have_pose_ = false;
+    std::size_t scans_read_ = 0;
+    std::size_t skipped_ = 0;
+};
+}  // namespace
+
+std::unique_ptr<ScanSource> openRawlog(const std::string& file)
+{
+    return std::make_unique<RawlogSource>(file);
+}
+
+}  // namespace hif::apps

@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   ScanSource.cpp
+ * @brief  Which source reads a path, and the scans of a sensory frame.
+ */
+#include "ScanSource.h"
+
+#include <mrpt/obs/CObservation2DRangeScan.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CObservationPointCloud.h>
+#include <mrpt/obs/CObservationRobotPose.h>
+
+#include <filesystem>
+#include <stdexcept>
+
+namespace fs = std::filesystem;
+
+namespace hif::apps
+{
+bool isScan(const mrpt::obs::CObservation& obs)
+{
+    using namespace mrpt::obs;
+    return IS_CLASS(obs, CObservationPointCloud) || IS_CLASS(obs, CObservation3DRangeScan) ||
+           IS_CLASS(obs, CObservation2DRangeScan);
+}
+
+std::unique_ptr<ScanSource> openScanSource(const std::string& path)
+{
+    if (fs::is_directory(path)) return openDynamicMapFolder(path);
+    if (!fs::exists(path)) throw std::runtime_error("input '" + path + "' does not exist");
+    if (fs::path(path).extension() == ".simplemap") return openSimpleMap(path);
+    return openRawlog(path);
+}
+
+void FrameScans::assign(const mrpt::obs::CSensoryFrame& frame, const mrpt::poses::CPose3D& pose)
+{
+    pending_.assign(frame.begin(), frame.end());
+    std::reverse(pending_.begin(), pending_.end());
+    pose_ = pose;
+}
+
+bool FrameScans::next(Scan& out)
+{
+    while (!pending_.empty())
+    {
+        auto obs = pending_.back();
+        pending_.pop_back();
+        if (!obs) continue;
+        if (isScan(*obs))
+        {
+            out = {obs, pose_};
+            return true;
+        }
+        if (IS_CLASS(*obs, mrpt::obs::CObservationRobotPose))
+            pose_ = dynamic_cast<const mrpt::obs::CObservationRobotPose&>(*obs).pose.mean;
+    }
+    return false;
+}
+
+}  // namespace hif::apps

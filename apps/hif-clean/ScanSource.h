@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   ScanSource.h
+ * @brief  hif-clean's inputs, read one scan at a time behind one interface: an MRPT rawlog
+ *         (a CObservationRobotPose before each scan, as kitti2rawlog writes; observations or
+ *         sensory frames), a .simplemap, or a DynamicMap benchmark folder (pcd/NNNNNN.pcd in the
+ *         world frame, sensor pose in VIEWPOINT).
+ */
+#pragma once
+
+#include <mrpt/obs/CObservation.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/poses/CPose3D.h>
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace hif::apps
+{
+/** One scan: the observation and the robot pose it was taken at. */
+struct Scan
+{
+    mrpt::obs::CObservation::Ptr obs;
+    mrpt::poses::CPose3D robot_pose;
+};
+
+class ScanSource
+{
+public:
+    virtual ~ScanSource() = default;
+    /** Next scan; false at the end. Throws std::runtime_error naming the file on a scan
+     *  without a pose or a corrupt file. */
+    virtual bool next(Scan& out) = 0;
+    /** Starts again from the first scan. */
+    virtual void rewind() = 0;
+    /** Number of scans when known before reading, else 0. */
+    [[nodiscard]] virtual std::size_t knownSize() const { return 0; }
+    /** Objects of the input that were neither poses nor scans (skipped). */
+    [[nodiscard]] virtual std::size_t skippedObjects() const { return 0; }
+    /** True for a DynamicMap benchmark folder (whose result goes to <folder>/hif_output.pcd). */
+    [[nodiscard]] virtual bool isDynamicMapFolder() const { return false; }
+};
+
+/** Opens `path`: a folder with pcd/ is a DynamicMap folder, a *.simplemap file a simple map,
+ *  anything else a rawlog (plain or gzip). Throws std::runtime_error naming it. */
+std::unique_ptr<ScanSource> openScanSource(const std::string& path);
+
+std::unique_ptr<ScanSource> openRawlog(const std::string& file);
+std::unique_ptr<ScanSource> openSimpleMap(const std::string& file);
+std::unique_ptr<ScanSource> openDynamicMapFolder(const std::string& folder);
+
+/** Whether hif-clean can insert and classify this observation type. */
+[[nodiscard]] bool isScan(const mrpt::obs::CObservation& obs);
+
+/** The scans of one sensory frame, handed out one at a time. A CObservationRobotPose in the
+ *  frame sets the pose of the scans after it. */
+class FrameScans
+{
+public:
+    /** The frame's observations, with the robot pose of the scans before any pose in it. */
+    void assign(const mrpt::obs::CSensoryFrame& frame, const mrpt::poses::CPose3D& pose);
+    /** The next scan of the frame; false when none is left. */
+    bool next(Scan& out);
+    void clear() { pending_.clear(); }
+
+private:
+    std::vector<mrpt::obs::CObservation::Ptr> pending_;  // in reverse order
+    mrpt::poses::CPose3D pose_;
+};
+
+}  // namespace hif::apps

@@ -1,0 +1,87 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   Summary.cpp
+ * @brief  summary.json and the closing report.
+ */
+#include "Summary.h"
+
+#include <algorithm>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+namespace
+{
+/** Every field of a settings struct, by its table (hif/FieldTable.h). */
+template <typename S>
+void addFields(nlohmann::ordered_json& j, const S& s)
+{
+    hif::forEachField<S>([&](const hif::Field<S>& f, auto member) { j[f.name] = s.*member; });
+}
+}  // namespace
+
+void writeSummary(const std::string& file, const SummaryInfo& info,
+                  const hif::CHeightIntervalMap& map, const Outputs& out, const Timings& t)
+{
+    const auto ins = hif::apps::timeStats(t.insert_ms);
+    const auto per_scan = hif::apps::timeStats(t.scan_ms);
+    const auto cls = hif::apps::timeStats(out.classify_ms);
+    nlohmann::ordered_json j;
+    j["input"] = info.input;
+    j["config"] = info.config;
+    j["mode"] = info.online ? "online" : "offline";
+    j["scans"] = t.scans;
+    j["points_in"] = out.points_in;
+    j["points_kept"] = out.points_kept;
+    j["points_removed"] = out.points_removed;
+    j["points_invalid"] = out.points_invalid;
+    j["pillars"] = map.pillarCount();
+    j["intervals"] = map.intervalCount();
+    j["max_intervals_per_pillar_seen"] = map.grid().maxIntervalsInAPillar();
+    j["map_bytes"] = map.grid().memoryBytes();
+    j["threads"] = map.grid().threads();
+    j["held_scans"] = info.held_scans;
+    j["scan_ms_median"] = per_scan.median;
+    j["scan_ms_p90"] = per_scan.p90;
+    j["scan_ms_max"] = per_scan.max;
+    j["insert_ms_median"] = ins.median;
+    j["classify_ms_median"] = cls.median;
+    j["files_s"] = t.files_ms / 1000.0;
+    j["total_s"] = t.total_s;
+    j["peak_rss_mb"] = hif::apps::peakRssMiB();
+    j["skipped_objects"] = info.skipped_objects;
+    nlohmann::ordered_json pj;
+    addFields(pj, map.geometry());
+    addFields(pj, map.params());
+    j["parameters"] = pj;
+    std::ofstream f(file);
+    f << std::setw(2) << j << "\n";
+    if (!f) throw std::runtime_error("Error writing to target file '" + file + "'");
+}
+
+void printReport(const std::string& tag, const std::string& out_dir, const std::string& dm_output,
+                 bool online, const hif::CHeightIntervalMap& map, const Outputs& out,
+                 const Timings& t)
+{
+    const auto per_scan = hif::apps::timeStats(t.scan_ms);
+    const auto cls = hif::apps::timeStats(out.classify_ms);
+    std::cout << std::fixed << std::setprecision(2) << tag << " scans " << t.scans << ", points "
+              << out.points_in << ": kept " << out.points_kept << ", removed " << out.points_removed
+              << " ("
+              << 100.0 * double(out.points_removed) /
+                     double(std::max<std::size_t>(1, out.points_in))
+              << "%)"
+              << (out.points_invalid ? ", invalid " + std::to_string(out.points_invalid) : "")
+              << "\n"
+              << tag << " map: " << map.pillarCount() << " pillars, " << map.intervalCount()
+              << " intervals, " << double(map.grid().memoryBytes()) / (1024.0 * 1024.0) << " MiB\n"
+              << tag << " ms per scan (" << (online ? "insert+classify" : "insert") << "): median "
+              << per_scan.median << ", p90 " << per_scan.p90 << ", max " << per_scan.max
+              << "; classify median " << cls.median << "\n"
+              << tag << " total " << t.total_s << " s, peak memory " << hif::apps::peakRssMiB()
+              << " MiB\n"
+              << tag << " wrote " << out_dir << "/{static_map,removed}.{ply,pcd}, predictions/, "
+              << "map.hifmap, summary.json" << (dm_output.empty() ? "" : " and " + dm_output)
+              << "\n";
+}

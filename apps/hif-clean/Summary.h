@@ -1,0 +1,26 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   Summary.h
+ * @brief  hif-clean's summary.json and its closing report on the console.
+ */
+#pragma once
+
+#include <string>
+
+#include "Outputs.h"
+
+struct SummaryInfo
+{
+    std::string input, config;
+    bool online = false;
+    bool held_scans = false;
+    std::size_t skipped_objects = 0;
+};
+
+/** summary.json: counts, map size, timings and every parameter of the map. */
+void writeSummary(const std::string& file, const SummaryInfo& info,
+                  const hif::CHeightIntervalMap& map, const Outputs& out, const Timings& t);
+
+void printReport(const std::string& tag, const std::string& out_dir, const std::string& dm_output,
+                 bool online, const hif::CHeightIntervalMap& map, const Outputs& out,
+                 const Timings& t);

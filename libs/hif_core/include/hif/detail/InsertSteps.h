@@ -1,0 +1,84 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   InsertSteps.h
+ * @brief  The steps of PillarGrid::insertScan(), one call each, so that the benchmark can time
+ *         them and the tests can look at what passes between them. Internal to hif_core.
+ */
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "hif/PillarGrid.h"
+#include "hif/detail/PillarUpdate.h"
+
+namespace hif::detail
+{
+/** One scan turned into the map's own structure: the pillars it hits, each with the height
+ *  cells of its points and, after buildSpans(), its spans h^t (Eq. 4). Reusing one object
+ *  between scans avoids allocation in steady state. */
+struct ScanBuckets
+{
+    /** @name Per pillar hit by the scan (bucket order)
+     *  @{ */
+    std::vector<uint64_t> keys;         ///< packKey() of the pillar
+    std::vector<uint32_t> offsets;      ///< pillar p owns items [offsets[p], offsets[p+1])
+    std::vector<int32_t> ceilings;      ///< first cell above what the scan could see (kAllHeights)
+    std::vector<uint32_t> span_counts;  ///< pillar p's spans: spans[offsets[p]] onwards
+    /** @} */
+
+    /** @name Per cell entry, grouped by pillar
+     *  A valid input point with the same pillar and height cell as the input point just before
+     *  it is a repeat: it is not stored (it would change no interval and no classification).
+     *  On KITTI scans, ordered by beam, three points in four are repeats.
+     *  @{ */
+    /** Height cell of each stored point. After buildSpans(), each pillar's range starts with
+     *  its distinct cells in ascending order (what follows them is unspecified). */
+    std::vector<int32_t> cells;
+    std::vector<uint32_t> index;  ///< input index of cells[k] (filled for classification only)
+    std::vector<Span> spans;      ///< at most one span per entry, so pillar p's fit at offsets[p]
+    /** @} */
+
+    /** Per input point (filled for classification only): 1 when the point is a repeat of the
+     *  input point before it, so it takes that point's class. */
+    std::vector<uint8_t> repeats;
+
+    Eigen::Vector3d sensor = Eigen::Vector3d::Zero();  ///< sensor position, world frame
+    /** Top beam's elevation as the largest z * |z| / (x^2 + y^2) of the points farther than
+     *  2 m horizontally (sensor frame; monotone in z / range, no square root); -inf if none. */
+    double top_slope_sq = -std::numeric_limits<double>::infinity();
+    std::size_t points_valid = 0;    ///< valid input points, repeats included
+    std::size_t points_invalid = 0;  ///< non-finite, or outside the int32 index range
+
+    [[nodiscard]] std::size_t pillarCount() const { return keys.size(); }
+    [[nodiscard]] std::size_t entryCount() const { return cells.size(); }
+
+    /** Scratch of bucketPoints(), kept to be reused. */
+    std::vector<int32_t> tmp_m, tmp_n, tmp_z;
+    std::vector<uint32_t> tmp_src, tmp_bin, tmp_counts;
+};
+
+/** Step 1: transforms and quantizes every point (Eq. 1), skips invalid ones and repeats, and
+ *  groups the rest by pillar in one counting-sort pass (a comparison sort only when the scan
+ *  spans more than 2^22 pillars). With `keep_index`, out.index and out.repeats are filled. */
+void bucketPoints(const PillarGrid& grid, const PointsView& points,
+                  const Eigen::Isometry3d& sensor_to_world, ScanBuckets& out,
+                  bool keep_index = false);
+
+/** Step 2: sorts each pillar's height cells and builds its spans (Eq. 4, with the
+ *  range-adaptive gap and padding) and its field-of-view ceiling. */
+void buildSpans(const PillarGrid& grid, ScanBuckets& scan);
+
+/** Step 3: the Bayes update of every pillar of the scan (Eq. 8-18), or its creation. */
+InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan);
+
+/** Step 4, when Params::see_through_range > 0: a miss (Eq. 13) for every interval of a pillar
+ *  the scan did not hit, within see_through_range of the sensor, that a beam of the scan
+ *  passed through (see Params::see_through_range). */
+void seeThroughMisses(PillarGrid& grid, const PointsView& points,
+                      const Eigen::Isometry3d& sensor_to_world, const ScanBuckets& scan);
+
+}  // namespace hif::detail

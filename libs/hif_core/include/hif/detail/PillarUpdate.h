@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   PillarUpdate.h
+ * @brief  The per-pillar steps of an insertion: a scan's heights into spans (Eq. 4), and the
+ *         Bayes update of a global pillar by them (Eq. 5-18). Internal to hif_core; public to
+ *         its tests and benchmark.
+ */
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "hif/Params.h"
+#include "hif/Pillar.h"
+
+namespace hif::detail
+{
+/** Height cells [lo, hi) seen occupied in one pillar by one scan (h^t without probability). */
+struct Span
+{
+    int32_t lo = 0;
+    int32_t hi = 0;
+    friend bool operator==(const Span& a, const Span& b) { return a.lo == b.lo && a.hi == b.hi; }
+};
+
+/** "No height limit": a scan whose field of view covers every height of the pillar. */
+constexpr int32_t kAllHeights = std::numeric_limits<int32_t>::max();
+
+/** Bayes filter of Eq. 5, in probability form: Ps p / (Ps p + Pd (1 - p)). */
+[[nodiscard]] inline double bayesFilter(double p, double ps, double pd)
+{
+    return ps * p / (ps * p + pd * (1.0 - p));
+}
+
+/** Eq. 5-6 in log-odds form: Bayesfilter(p, Ps, Pd) is logit(p) + log(Ps / Pd), so an
+ *  observation adds `hit` = log(alpha / beta) and a miss adds `miss` = log((1-alpha)/(1-beta));
+ *  clipping to [p_min, p_max] (Eq. 17) is clamping to [lmin, lmax]. */
+struct LogOddsModel
+{
+    float hit = 0.0f;
+    float miss = 0.0f;
+    float lmin = 0.0f;
+    float lmax = 0.0f;
+    float empty_init = 0.0f;
+    bool lhp = true;
+    bool hhp = true;
+    bool unseen_prior = true;
+
+    [[nodiscard]] static LogOddsModel fromParams(const Params& p);
+    [[nodiscard]] float clamp(float l) const { return l < lmin ? lmin : (l > lmax ? lmax : l); }
+};
+
+/** Heights (already as cells, sorted ascending) of one pillar in one scan merged into spans
+ *  (Eq. 4): consecutive cells whose empty gap is at most `gap_cells` share a span; each span is
+ *  widened by `pad_cells` on both sides, and spans that then touch or overlap are joined.
+ *  Writes the spans to `out`, which must have room for `n` (there are never more), and
+ *  returns their count. */
+std::size_t spansFromCells(const int32_t* sorted_cells, std::size_t n, int32_t gap_cells,
+                           int32_t pad_cells, Span* out);
+
+/** The Bayes update of global pillars by one scan's spans, with its reusable storage. One per
+ *  thread. */
+class PillarUpdater
+{
+public:
+    PillarUpdater(const LogOddsModel& model, std::size_t max_intervals)
+        : model_(model), max_intervals_(max_intervals)
+    {
+    }
+
+    /** Updates pillar `g` with the spans `t` (sorted, disjoint, non-empty) seen by one scan:
+     *  elementary intervals from the union of endpoints (Eq. 9-10), the three overlap cases
+     *  (Eq. 11-14), LHP (Eq. 15-16), clipping (Eq. 17-18), then p_empty (Eq. 8). Touching
+     *  results of equal log-odds are merged (lossless); then the count is capped (see
+     *  capIntervals()). `ceiling` is the first height cell above what the scan could see in
+     *  this pillar (kAllHeights: no limit); with the model's hhp, intervals at or above it are
+     *  kept as they are, and with its unseen_prior, new intervals at or above the pillar's
+     *  previous seen_top start from the model's empty_init. */
+    void update(Pillar& g, const Span* t, std::size_t nt, int32_t ceiling = kAllHeights);
+
+    /** New settings; the storage is kept. */
+    void reset(const LogOddsModel& model, std::size_t max_intervals)
+    {
+        model_ = model;
+        max_intervals_ = max_intervals;
+    }
+
+    [[nodiscard]] const LogOddsModel& model() const { return model_; }
+
+private:
+    LogOddsModel model_;
+    std::size_t max_intervals_;
+    std::vector<Interval> pieces_;  ///< the sweep's output, reused
+};
+
+/** Merges neighbours of iv[0, n) until at most `max_intervals` remain: each step joins the
+ *  pair with the smallest gap between them (ties: the smallest log-odds difference, then the
+ *  lowest pair) into one interval that spans both, with the length-weighted mean of their
+ *  log-odds. Returns the new count; the result is iv[0, count). */
+std::size_t capIntervals(Interval* iv, std::size_t n, std::size_t max_intervals);
+
+/** Joins touching neighbours of equal log-odds in iv[0, n) (lossless), restoring the invariant
+ *  on Pillar after log-odds changed in place. Returns the new count. */
+std::size_t joinEqualNeighbours(Interval* iv, std::size_t n);
+
+}  // namespace hif::detail

@@ -1,0 +1,150 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   BucketPoints.cpp
+ * @brief  Step 1 of an insertion: a scan's points quantized and grouped by pillar.
+ */
+#include <algorithm>
+#include <array>
+
+#include "GridAccess.h"
+#include "QuantizePass.h"
+
+namespace hif::detail
+{
+void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Isometry3d& T,
+                  ScanBuckets& out, bool keep_index)
+{
+    out.sensor = T.translation();
+    out.top_slope_sq = -std::numeric_limits<double>::infinity();
+    out.tmp_m.resize(pts.size);
+    out.tmp_n.resize(pts.size);
+    out.tmp_z.resize(pts.size);
+    if (keep_index)
+    {
+        out.tmp_src.resize(pts.size);
+        out.repeats.assign(pts.size, 0);
+    }
+
+    // Pass 1: transform, quantize (Eq. 1; as quantize(), without std::optional) and keep the
+    // valid points that are not repeats, with the bounding box of their pillars and the top
+    // beam's elevation. In fixed chunks (whatever the thread count, so the result is the
+    // same; a chunk's first point is never a repeat), each compacted in place, then moved
+    // together.
+    constexpr std::size_t kChunk = 16384;
+    const ChunkOutput chunk_out{out.tmp_m.data(), out.tmp_n.data(), out.tmp_z.data(),
+                                keep_index ? out.tmp_src.data() : nullptr,
+                                keep_index ? out.repeats.data() : nullptr};
+    const std::size_t n_chunks = (pts.size + kChunk - 1) / kChunk;
+    std::array<ChunkSummary, 64> small_chunks;  // up to 1M points without allocation
+    std::vector<ChunkSummary> big_chunks(n_chunks > small_chunks.size() ? n_chunks : 0);
+    ChunkSummary* chunks = big_chunks.empty() ? small_chunks.data() : big_chunks.data();
+    forRanges(GridAccess::arena(grid), n_chunks, 1,
+              [&](std::size_t c0, std::size_t c1)
+              {
+                  for (std::size_t c = c0; c < c1; ++c)
+                  {
+                      const std::size_t i0 = c * kChunk, i1 = std::min(pts.size, i0 + kChunk);
+                      chunks[c] = quantizeChunk(T, grid.geometry(), pts, i0, i1, chunk_out);
+                  }
+              });
+    int32_t m_min = std::numeric_limits<int32_t>::max(),
+            m_max = std::numeric_limits<int32_t>::min();
+    int32_t n_min = m_min, n_max = m_max;
+    std::size_t v = 0, valid = 0;
+    for (std::size_t c = 0; c < n_chunks; ++c)
+    {
+        const ChunkSummary& ch = chunks[c];
+        const std::size_t from = c * kChunk;
+        if (from != v && ch.kept > 0)  // close the gap left by invalid points and repeats
+        {
+            std::copy_n(out.tmp_m.begin() + from, ch.kept, out.tmp_m.begin() + v);
+            std::copy_n(out.tmp_n.begin() + from, ch.kept, out.tmp_n.begin() + v);
+            std::copy_n(out.tmp_z.begin() + from, ch.kept, out.tmp_z.begin() + v);
+            if (keep_index)
+                std::copy_n(out.tmp_src.begin() + from, ch.kept, out.tmp_src.begin() + v);
+        }
+        v += ch.kept;
+        valid += ch.valid;
+        m_min = std::min(m_min, ch.m_min);
+        m_max = std::max(m_max, ch.m_max);
+        n_min = std::min(n_min, ch.n_min);
+        n_max = std::max(n_max, ch.n_max);
+        out.top_slope_sq = std::max(out.top_slope_sq, ch.top_slope_sq);
+    }
+    out.points_valid = valid;
+    out.points_invalid = pts.size - valid;
+    out.keys.clear();
+    out.offsets.clear();
+    out.cells.resize(v);
+    out.index.resize(keep_index ? v : 0);
+    if (v == 0)
+    {
+        out.offsets.push_back(0);
+        return;
+    }
+
+    // Pass 2: group by pillar. Counting sort over the scan's bounding box of pillars when it
+    // is small (always, for a LiDAR scan at 1 m pillars); else a comparison sort.
+    const int64_t width = int64_t{m_max} - m_min + 1, height = int64_t{n_max} - n_min + 1;
+    constexpr int64_t kMaxBins = int64_t{1} << 22;
+    if (width * height <= kMaxBins)
+    {
+        const auto bins = static_cast<std::size_t>(width * height);
+        auto& bin = out.tmp_bin;
+        bin.resize(v);
+        // counts[b], then after the prefix sum the next free slot of bin b; the non-empty
+        // bins give the pillars and their offsets in the same pass.
+        std::vector<uint32_t>& counts = out.tmp_counts;
+        counts.assign(bins, 0);
+        for (std::size_t k = 0; k < v; ++k)
+        {
+            const auto b = static_cast<uint32_t>(int64_t{out.tmp_m[k] - m_min} * height +
+                                                 (out.tmp_n[k] - n_min));
+            bin[k] = b;
+            ++counts[b];
+        }
+        uint32_t sum = 0;
+        for (std::size_t b = 0; b < bins; ++b)
+        {
+            const uint32_t c = counts[b];
+            if (c == 0) continue;
+            counts[b] = sum;
+            out.keys.push_back(
+                packKey({static_cast<int32_t>(m_min + static_cast<int64_t>(b) / height),
+                         static_cast<int32_t>(n_min + static_cast<int64_t>(b) % height)}));
+            out.offsets.push_back(sum);
+            sum += c;
+        }
+        out.offsets.push_back(sum);
+        for (std::size_t k = 0; k < v; ++k)
+        {
+            const uint32_t slot = counts[bin[k]]++;
+            out.cells[slot] = out.tmp_z[k];
+            if (keep_index) out.index[slot] = out.tmp_src[k];
+        }
+    }
+    else
+    {
+        auto& order = out.tmp_bin;
+        order.resize(v);
+        for (std::size_t k = 0; k < v; ++k) order[k] = static_cast<uint32_t>(k);
+        auto keyOf = [&](uint32_t k) { return packKey({out.tmp_m[k], out.tmp_n[k]}); };
+        std::sort(order.begin(), order.end(),
+                  [&](uint32_t a, uint32_t b) { return keyOf(a) < keyOf(b); });
+        for (std::size_t k = 0; k < v; ++k)
+        {
+            const uint32_t src = order[k];
+            const uint64_t key = keyOf(src);
+            if (out.keys.empty() || out.keys.back() != key)
+            {
+                out.keys.push_back(key);
+                out.offsets.push_back(static_cast<uint32_t>(k));
+            }
+            out.cells[k] = out.tmp_z[src];
+            if (keep_index) out.index[k] = out.tmp_src[src];
+        }
+        out.offsets.push_back(static_cast<uint32_t>(v));
+    }
+}
+
+}  // namespace hif::detail

@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   Classify.cpp
+ * @brief  Classification of a scan's points as static or dynamic, pillar by pillar.
+ */
+#include <atomic>
+#include <cmath>
+
+#include "GridAccess.h"
+
+namespace hif
+{
+ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& is_dynamic,
+                                   const Eigen::Isometry3d& T) const
+{
+    // Reused by later calls on this thread. Worker threads must use this thread's object, so
+    // the lambda below captures a reference, never the thread_local name.
+    thread_local detail::ScanBuckets scan_buffer;
+    detail::ScanBuckets& scan = scan_buffer;
+    detail::bucketPoints(*this, pts, T, scan, true);
+    constexpr uint8_t kUnset = 2;
+    is_dynamic.assign(pts.size, kUnset);
+
+    const bool prior_static = logit(params_.p_empty_init) >= static_logodds_;
+    std::atomic<std::size_t> n_static{0};
+    detail::forRanges(arena_.get(), scan.pillarCount(), 256,
+                      [&](std::size_t p0, std::size_t p1)
+                      {
+                          std::size_t local_static = 0;
+                          for (std::size_t p = p0; p < p1; ++p)
+                          {
+                              const uint32_t b = scan.offsets[p], e = scan.offsets[p + 1];
+                              const Pillar* pil = findPillar(unpackKey(scan.keys[p]));
+                              for (uint32_t k = b; k < e; ++k)
+                              {
+                                  bool stat = prior_static;
+                                  if (pil)
+                                  {
+                                      const Interval* iv = findInterval(*pil, scan.cells[k]);
+                                      stat = (iv ? iv->logodds : pil->logodds_empty) >=
+                                             static_logodds_;
+                                  }
+                                  is_dynamic[scan.index[k]] = stat ? 0 : 1;
+                                  local_static += stat;
+                              }
+                          }
+                          n_static += local_static;
+                      });
+    ClassifyStats st;
+    st.static_points = n_static;
+    // A repeat has the pillar and height cell of the point before it, hence its class.
+    for (std::size_t i = 1; i < pts.size; ++i)
+        if (scan.repeats[i])
+        {
+            is_dynamic[i] = is_dynamic[i - 1];
+            st.static_points += is_dynamic[i] == 0;
+        }
+    // Points that bucketPoints() skipped: non-finite ones are invalid (dynamic); finite ones
+    // beyond the int32 index range lie in unknown space, which has the prior.
+    if (scan.points_invalid > 0)
+        for (std::size_t i = 0; i < pts.size; ++i)
+        {
+            if (is_dynamic[i] != kUnset) continue;
+            const bool finite =
+                std::isfinite(pts.x[i]) && std::isfinite(pts.y[i]) && std::isfinite(pts.z[i]);
+            st.invalid_points += !finite;
+            const bool stat = finite && prior_static;
+            is_dynamic[i] = stat ? 0 : 1;
+            st.static_points += stat;
+        }
+    st.dynamic_points = pts.size - st.static_points;
+    return st;
+}
+}  // namespace hif

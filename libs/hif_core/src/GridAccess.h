@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   GridAccess.h
+ * @brief  What the insertion steps (detail/InsertSteps.h) reach inside a PillarGrid: its
+ *         table of pillars, its threads and its reusable buffers.
+ */
+#pragma once
+
+#include <vector>
+
+#include "Parallel.h"
+#include "hif/PillarGrid.h"
+#include "hif/detail/InsertSteps.h"
+
+namespace hif::detail
+{
+using PillarTable = absl::flat_hash_map<uint64_t, Pillar, PackedKeyHash>;
+
+/** Per-scan buffers of a grid, kept between insertions so that steady state allocates
+ *  nothing. */
+struct Workspace
+{
+    ScanBuckets scan;
+    std::vector<Pillar*> targets;              ///< per scan pillar: its map pillar, or null
+    PillarUpdater updater{LogOddsModel(), 1};  ///< reset at every insertion
+    std::vector<float> range_image;            ///< see-through misses
+    std::vector<uint8_t> hit;                  ///< see-through misses: pillars the scan hit
+};
+
+struct GridAccess
+{
+    static PillarTable& pillars(PillarGrid& g) { return g.pillars_; }
+    static const PillarTable& pillars(const PillarGrid& g) { return g.pillars_; }
+    /** Null when the grid runs on one thread. */
+    static ThreadArena* arena(const PillarGrid& g) { return g.arena_.get(); }
+    static Workspace& workspace(PillarGrid& g) { return g.workspace_.get(); }
+    static double staticLogOdds(const PillarGrid& g) { return g.static_logodds_; }
+};
+
+}  // namespace hif::detail

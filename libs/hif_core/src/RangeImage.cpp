@@ -1,0 +1,125 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   RangeImage.cpp
+ * @brief  The range image of a scan, scalar and AVX.
+ */
+#include "RangeImage.h"
+
+#include <cstdint>
+#include <limits>
+
+#include "Simd.h"
+#include "hif/detail/Cpu.h"
+
+namespace hif::detail
+{
+namespace
+{
+/** Range-image cell (imageCell(), or -1 if none) and range of points [0, n) of x/y/z. */
+void imageCellsScalar(const float* x, const float* y, const float* z, std::size_t n, int32_t* cells,
+                      float* ranges)
+{
+    for (std::size_t j = 0; j < n; ++j)
+    {
+        cells[j] = -1;
+        const double sx = x[j], sy = y[j], sz = z[j];
+        if (!std::isfinite(sx) || !std::isfinite(sy) || !std::isfinite(sz)) continue;
+        const double rxy = std::sqrt(sx * sx + sy * sy);
+        if (rxy == 0.0) continue;
+        cells[j] = imageCell(pseudoAzimuth(sx, sy), sz / rxy);
+        ranges[j] = static_cast<float>(std::sqrt(rxy * rxy + sz * sz));
+    }
+}
+
+#if HIF_X86_AVX
+/** imageCellsScalar() four points at a time: the same operations, so the same bits. */
+__attribute__((target("avx"))) void imageCellsAvx(const float* x, const float* y, const float* z,
+                                                  std::size_t n, int32_t* cells, float* ranges)
+{
+    const __m256d inf = _mm256_set1_pd(std::numeric_limits<double>::infinity());
+    const __m256d zero = _mm256_setzero_pd();
+    const __m256d abs_mask = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7fffffffffffffffLL));
+    const __m256d tan_min = _mm256_set1_pd(kTanMin), tan_max = _mm256_set1_pd(kTanMax);
+    const __m256d tan_res = _mm256_set1_pd(kTanRes);
+    const __m256d col_scale = _mm256_set1_pd(kImageCols / 4.0);
+    const __m256d last_col = _mm256_set1_pd(kImageCols - 1),
+                  last_row = _mm256_set1_pd(kImageRows - 1);
+    const __m256d cols = _mm256_set1_pd(kImageCols);
+    const __m256d none = _mm256_set1_pd(-1.0);
+    const __m256d two = _mm256_set1_pd(2.0), four = _mm256_set1_pd(4.0);
+    std::size_t j = 0;
+    for (; j + 4 <= n; j += 4)
+    {
+        const __m256d sx = _mm256_cvtps_pd(_mm_loadu_ps(x + j));
+        const __m256d sy = _mm256_cvtps_pd(_mm_loadu_ps(y + j));
+        const __m256d sz = _mm256_cvtps_pd(_mm_loadu_ps(z + j));
+        const __m256d ax = _mm256_and_pd(sx, abs_mask), ay = _mm256_and_pd(sy, abs_mask);
+        const __m256d finite = _mm256_and_pd(
+            _mm256_and_pd(_mm256_cmp_pd(ax, inf, _CMP_LT_OQ), _mm256_cmp_pd(ay, inf, _CMP_LT_OQ)),
+            _mm256_cmp_pd(_mm256_and_pd(sz, abs_mask), inf, _CMP_LT_OQ));
+        const __m256d rxy =
+            _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(sx, sx), _mm256_mul_pd(sy, sy)));
+        // pseudoAzimuth(): y / (|x| + |y|), then by quadrant.
+        const __m256d a = _mm256_div_pd(sy, _mm256_add_pd(ax, ay));
+        const __m256d right =
+            _mm256_blendv_pd(_mm256_add_pd(four, a), a, _mm256_cmp_pd(sy, zero, _CMP_GE_OQ));
+        const __m256d paz =
+            _mm256_blendv_pd(_mm256_sub_pd(two, a), right, _mm256_cmp_pd(sx, zero, _CMP_GE_OQ));
+        const __m256d tan_el = _mm256_div_pd(sz, rxy);
+        const __m256d ok =
+            _mm256_and_pd(_mm256_and_pd(finite, _mm256_cmp_pd(rxy, zero, _CMP_NEQ_OQ)),
+                          _mm256_and_pd(_mm256_cmp_pd(tan_el, tan_min, _CMP_GE_OQ),
+                                        _mm256_cmp_pd(tan_el, tan_max, _CMP_LT_OQ)));
+        // imageCell(): truncated column and row, each capped at the last one.
+        const __m256d col = _mm256_round_pd(_mm256_min_pd(_mm256_mul_pd(paz, col_scale), last_col),
+                                            _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC);
+        const __m256d row = _mm256_round_pd(
+            _mm256_min_pd(_mm256_div_pd(_mm256_sub_pd(tan_el, tan_min), tan_res), last_row),
+            _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC);
+        const __m256d k = _mm256_add_pd(_mm256_mul_pd(row, cols), col);
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(cells + j),
+                         _mm256_cvttpd_epi32(_mm256_blendv_pd(none, k, ok)));
+        const __m256d range =
+            _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(rxy, rxy), _mm256_mul_pd(sz, sz)));
+        _mm_storeu_ps(ranges + j, _mm256_cvtpd_ps(range));
+    }
+    imageCellsScalar(x + j, y + j, z + j, n - j, cells + j, ranges + j);
+}
+#endif
+
+/** imageCellsScalar(), with AVX when the CPU has it. */
+void imageCells(const float* x, const float* y, const float* z, std::size_t n, int32_t* cells,
+                float* ranges)
+{
+#if HIF_X86_AVX
+    if (useAvx())
+    {
+        imageCellsAvx(x, y, z, n, cells, ranges);
+        return;
+    }
+#endif
+    imageCellsScalar(x, y, z, n, cells, ranges);
+}
+}  // namespace
+
+void buildRangeImage(const PointsView& pts, std::vector<float>& img)
+{
+    img.assign(static_cast<std::size_t>(kImageCols) * kImageRows,
+               std::numeric_limits<float>::infinity());
+    constexpr std::size_t kBlock = 256;
+    alignas(64) int32_t cells[kBlock];
+    alignas(64) float ranges[kBlock];
+    for (std::size_t b0 = 0; b0 < pts.size; b0 += kBlock)
+    {
+        const std::size_t nb = std::min(kBlock, pts.size - b0);
+        imageCells(pts.x + b0, pts.y + b0, pts.z + b0, nb, cells, ranges);
+        for (std::size_t j = 0; j < nb; ++j)
+            if (cells[j] >= 0)
+            {
+                float& cell = img[static_cast<std::size_t>(cells[j])];
+                cell = std::min(cell, ranges[j]);
+            }
+    }
+}
+
+}  // namespace hif::detail

@@ -1,0 +1,117 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   SeeThrough.cpp
+ * @brief  See-through misses (Params::see_through_range): after a scan, a miss (Eq. 13) for
+ *         every interval of a nearby pillar the scan did not hit that a beam passed through.
+ */
+#include <cmath>
+
+#include "GridAccess.h"
+#include "RangeImage.h"
+
+namespace hif::detail
+{
+namespace
+{
+/** The see-through test of one pillar, whose axis is base + up * z in the sensor frame,
+ *  against the scan's range image `img`. */
+void seeThroughPillar(Pillar& pil, const Eigen::Vector3d& base, const Eigen::Vector3d& up,
+                      const std::vector<float>& img, double margin, double res,
+                      const LogOddsModel& model)
+{
+    bool changed = false;
+    for (Interval& iv : pil.intervals)
+    {
+        // The beams in the pillar centre's direction between the interval's bottom and top:
+        // one that returned beyond it (by more than the margin) passed through it; one that
+        // returned near it vetoes (something is there).
+        const Eigen::Vector3d lo = base + up * (iv.lo * res);
+        const double hi_z = base.z() + up.z() * (iv.hi * res);
+        const double d = std::sqrt(lo.x() * lo.x() + lo.y() * lo.y());
+        if (d == 0.0) continue;
+        const double paz = pseudoAzimuth(lo.x(), lo.y());
+        const int k0 = imageCell(paz, std::max(lo.z() / d, kTanMin));
+        const int k1 = imageCell(paz, std::min(hi_z / d, kTanMax - 1e-12));
+        if (k0 < 0 || k1 < 0) continue;
+        bool through = false, veto = false;
+        for (int k = k0; k <= k1 && !veto; k += kImageCols)
+        {
+            const float r = img[static_cast<std::size_t>(k)];
+            if (!std::isfinite(r)) continue;  // no return: no evidence
+            const double tan_el = kTanMin + (k / kImageCols + 0.5) * kTanRes;
+            const double dist = d * std::sqrt(1.0 + tan_el * tan_el);  // to the pillar's axis
+            if (r > dist + margin)
+                through = true;
+            else if (r > dist - margin)
+                veto = true;
+            // else: occluded by something closer, no evidence
+        }
+        if (through && !veto)
+        {
+            iv.logodds = model.clamp(iv.logodds + model.miss);  // Eq. 13
+            changed = true;
+        }
+    }
+    if (changed)
+        pil.intervals.resize(joinEqualNeighbours(pil.intervals.data(), pil.intervals.size()));
+}
+}  // namespace
+
+void seeThroughMisses(PillarGrid& grid, const PointsView& pts, const Eigen::Isometry3d& T,
+                      const ScanBuckets& scan)
+{
+    Workspace& ws = GridAccess::workspace(grid);
+    PillarTable& pillars = GridAccess::pillars(grid);
+    const GridGeometry& geo = grid.geometry();
+    const Params& prm = grid.params();
+    const LogOddsModel model = LogOddsModel::fromParams(prm);
+    const std::vector<float>& img = ws.range_image;
+    buildRangeImage(pts, ws.range_image);
+
+    // The map's pillars within see_through_range of the sensor that the scan did not hit.
+    const double ps = geo.pillar_size;
+    const double range = prm.see_through_range, margin = prm.see_through_margin;
+    const Eigen::Vector3d t = T.translation();
+    const Eigen::Matrix3d Rt = T.linear().transpose();
+    int32_t cm = 0, cn = 0;
+    if (!floorToInt32((t.x() - geo.origin_x) / ps, cm) ||
+        !floorToInt32((t.y() - geo.origin_y) / ps, cn))
+        return;
+    const int64_t w = static_cast<int64_t>(std::ceil(range / ps));
+    const int64_t side = 2 * w + 1;
+    std::vector<uint8_t>& hit = ws.hit;
+    hit.assign(static_cast<std::size_t>(side * side), 0);
+    for (uint64_t key : scan.keys)
+    {
+        const PillarIndex idx = unpackKey(key);
+        const int64_t a = int64_t{idx.m} - cm + w, b = int64_t{idx.n} - cn + w;
+        if (a >= 0 && a < side && b >= 0 && b < side)
+            hit[static_cast<std::size_t>(a * side + b)] = 1;
+    }
+    // Rows of the window are independent (each pillar is in one row): split them over threads.
+    const Eigen::Vector3d up = Rt.col(2);  // world z axis in the sensor frame
+    forRanges(GridAccess::arena(grid), static_cast<std::size_t>(side), 8,
+              [&](std::size_t a0, std::size_t a1)
+              {
+                  for (auto a = static_cast<int64_t>(a0); a < static_cast<int64_t>(a1); ++a)
+                      for (int64_t b = 0; b < side; ++b)
+                      {
+                          const int64_t m = cm + a - w, n = cn + b - w;
+                          if (hit[static_cast<std::size_t>(a * side + b)] || m < INT32_MIN ||
+                              m > INT32_MAX || n < INT32_MIN || n > INT32_MAX)
+                              continue;
+                          const PillarIndex idx{static_cast<int32_t>(m), static_cast<int32_t>(n)};
+                          const auto it = pillars.find(packKey(idx));
+                          if (it == pillars.end()) continue;
+                          const double dx = geo.centreX(idx.m) - t.x();
+                          const double dy = geo.centreY(idx.n) - t.y();
+                          if (dx * dx + dy * dy > range * range) continue;
+                          // The pillar's axis in the sensor frame: base + up * z.
+                          const Eigen::Vector3d base = Rt * Eigen::Vector3d(dx, dy, -t.z());
+                          seeThroughPillar(it->second, base, up, img, margin, geo.height_resolution,
+                                           model);
+                      }
+              });
+}
+
+}  // namespace hif::detail

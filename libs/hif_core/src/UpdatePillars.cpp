@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   UpdatePillars.cpp
+ * @brief  Step 3 of an insertion: the Bayes update of every pillar the scan hit (Eq. 8-18), or
+ *         its creation.
+ */
+#include <algorithm>
+
+#include "GridAccess.h"
+
+namespace hif::detail
+{
+InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
+{
+    PillarTable& pillars = GridAccess::pillars(grid);
+    Workspace& ws = GridAccess::workspace(grid);
+    std::vector<Pillar*>& targets = ws.targets;
+    const LogOddsModel model = LogOddsModel::fromParams(grid.params());
+    const std::size_t cap = grid.params().max_intervals_per_pillar;
+    ws.updater.reset(model, cap);
+
+    InsertStats st;
+    st.points_used = scan.points_valid;
+    st.points_invalid = scan.points_invalid;
+    const std::size_t np = scan.pillarCount();
+
+    // Pillars already in the map are found and updated in parallel (finds are read-only and
+    // pillars independent); the new ones are then created and updated in scan order.
+    targets.resize(np);
+    // A software pipeline, as the table and the intervals are far bigger than the cache: the
+    // slot of pillar p + 2D is prefetched, pillar p + D is found and its intervals prefetched,
+    // pillar p is updated.
+    constexpr std::size_t kAhead = 8;  // D
+    auto updateExisting = [&](std::size_t p0, std::size_t p1, PillarUpdater& updater)
+    {
+        auto find = [&](std::size_t p)
+        {
+            const auto it = pillars.find(scan.keys[p]);
+            targets[p] = it == pillars.end() ? nullptr : &it->second;
+            if (targets[p]) __builtin_prefetch(targets[p]->intervals.data());
+        };
+        for (std::size_t p = p0; p < std::min(p1, p0 + 2 * kAhead); ++p)
+            pillars.prefetch(scan.keys[p]);
+        for (std::size_t p = p0; p < std::min(p1, p0 + kAhead); ++p) find(p);
+        for (std::size_t p = p0; p < p1; ++p)
+        {
+            if (p + 2 * kAhead < p1) pillars.prefetch(scan.keys[p + 2 * kAhead]);
+            if (p + kAhead < p1) find(p + kAhead);
+            if (targets[p])
+                updater.update(*targets[p], scan.spans.data() + scan.offsets[p],
+                               scan.span_counts[p], scan.ceilings[p]);
+        }
+    };
+    ThreadArena* arena = GridAccess::arena(grid);
+    if (!arena)
+        updateExisting(0, np, ws.updater);
+    else
+        forRanges(arena, np, 256,
+                  [&](std::size_t p0, std::size_t p1)
+                  {
+                      PillarUpdater updater(model, cap);
+                      updateExisting(p0, p1, updater);
+                  });
+    for (std::size_t p = 0; p < np; ++p)
+    {
+        if (targets[p]) continue;
+        // A new pillar is an empty one with the prior p_empty: the general update then gives
+        // its intervals Bayesfilter(p_empty_init, alpha, beta) (Eq. 14).
+        Pillar& pil = pillars[scan.keys[p]];
+        pil.logodds_empty = model.clamp(model.empty_init);
+        ++st.pillars_created;
+        ws.updater.update(pil, scan.spans.data() + scan.offsets[p], scan.span_counts[p],
+                          scan.ceilings[p]);
+    }
+    st.pillars_updated = np - st.pillars_created;
+    return st;
+}
+
+}  // namespace hif::detail

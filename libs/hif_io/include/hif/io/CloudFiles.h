@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   CloudFiles.h
+ * @brief  Point-cloud files written point by point (binary PLY and PCD with x y z intensity),
+ *         so that a map of any length is written without holding it in memory; and a PCD
+ *         reader for the DynamicMap benchmark layout.
+ */
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "hif/io/Cloud.h"
+
+namespace hif::io
+{
+/** Writes the same points, x y z intensity (float32 each), to one or more files, each a
+ *  binary little-endian PLY or a binary PCD chosen by its extension (.ply or .pcd). Both
+ *  formats have the same body, so it is written once, to "<first file>.part"; close() writes
+ *  each file's header (which needs the count) and the body. Throws std::runtime_error naming
+ *  the file on any I/O failure. */
+class CloudWriter
+{
+public:
+    explicit CloudWriter(std::vector<std::string> files);
+    ~CloudWriter();
+    CloudWriter(const CloudWriter&) = delete;
+    CloudWriter& operator=(const CloudWriter&) = delete;
+
+    void add(float x, float y, float z, float intensity);
+    /** Writes the files; they are complete only after this. */
+    void close();
+    [[nodiscard]] std::size_t count() const { return count_; }
+
+private:
+    std::vector<std::string> files_;
+    std::string part_;
+    std::FILE* f_ = nullptr;
+    std::size_t count_ = 0;
+    std::vector<float> buf_;
+};
+
+/** A point cloud read from a PCD file: coordinates, intensity (0 when absent) and VIEWPOINT. */
+struct PcdCloud : Cloud
+{
+    Eigen::Isometry3d viewpoint = Eigen::Isometry3d::Identity();
+};
+
+/** Reads an ASCII or binary PCD file (fields x y z [intensity] and others, float32 x y z).
+ *  Throws std::runtime_error naming the file and the problem for anything else (compressed
+ *  data, missing fields, a truncated body). */
+[[nodiscard]] PcdCloud readPcd(const std::string& file);
+
+}  // namespace hif::io

@@ -1,0 +1,213 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   CloudFiles.cpp
+ * @brief  Streaming PLY/PCD writer and PCD reader.
+ */
+#include "hif/io/CloudFiles.h"
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "hif/io/FileError.h"
+
+namespace hif::io
+{
+namespace
+{
+bool endsWith(const std::string& s, const std::string& suffix)
+{
+    return s.size() >= suffix.size() &&
+           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+}  // namespace
+
+CloudWriter::CloudWriter(std::vector<std::string> files) : files_(std::move(files))
+{
+    if (files_.empty()) throw std::invalid_argument("CloudWriter: no output file");
+    for (const std::string& file : files_)
+        if (!endsWith(file, ".pcd") && !endsWith(file, ".ply"))
+            throwFileError(file, "has an unknown point-cloud extension (use .ply or .pcd)");
+    part_ = files_.front() + ".part";
+    f_ = std::fopen(part_.c_str(), "wb");
+    if (!f_) throwFileError(part_, std::string("cannot be created: ") + std::strerror(errno));
+    buf_.reserve(4 * 8192);
+}
+
+CloudWriter::~CloudWriter()
+{
+    if (f_)
+    {
+        std::fclose(f_);
+        std::remove(part_.c_str());
+    }
+}
+
+void CloudWriter::add(float x, float y, float z, float intensity)
+{
+    buf_.insert(buf_.end(), {x, y, z, intensity});
+    ++count_;
+    if (buf_.size() >= 4 * 8192)
+    {
+        if (std::fwrite(buf_.data(), sizeof(float), buf_.size(), f_) != buf_.size())
+            throwFileError(part_, "could not be written (disk full?)");
+        buf_.clear();
+    }
+}
+
+void CloudWriter::close()
+{
+    if (!f_) return;
+    if (!buf_.empty() && std::fwrite(buf_.data(), sizeof(float), buf_.size(), f_) != buf_.size())
+        throwFileError(part_, "could not be written (disk full?)");
+    buf_.clear();
+    if (std::fclose(f_) != 0) throwFileError(part_, "could not be closed (disk full?)");
+    f_ = nullptr;
+
+    for (const std::string& file : files_)
+    {
+        std::ofstream out(file, std::ios::binary | std::ios::trunc);
+        if (!out) throwFileError(file, "cannot be created");
+        if (endsWith(file, ".ply"))
+            out << "ply\nformat binary_little_endian 1.0\ncomment written by hif\nelement vertex "
+                << count_
+                << "\nproperty float x\nproperty float y\nproperty float z\nproperty float "
+                   "intensity\nend_header\n";
+        else
+            out << "# .PCD v0.7 - Point Cloud Data file format (written by hif)\nVERSION 0.7\n"
+                   "FIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH "
+                << count_ << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << count_
+                << "\nDATA binary\n";
+        std::ifstream body(part_, std::ios::binary);
+        if (count_ > 0) out << body.rdbuf();
+        out.close();
+        if (!out) throwFileError(file, "could not be written (disk full?)");
+    }
+    std::remove(part_.c_str());
+}
+
+PcdCloud readPcd(const std::string& file)
+{
+    std::ifstream f(file, std::ios::binary);
+    if (!f) throwFileError(file, "cannot be opened");
+    std::vector<std::string> fields;
+    std::vector<int> sizes, counts;
+    std::vector<char> types;
+    std::size_t points = 0;
+    bool have_points = false;
+    std::string data;
+    PcdCloud out;
+    for (std::string line; std::getline(f, line);)
+    {
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream is(line);
+        std::string key;
+        is >> key;
+        if (key == "FIELDS")
+            for (std::string s; is >> s;) fields.push_back(s);
+        else if (key == "SIZE")
+            for (int s; is >> s;) sizes.push_back(s);
+        else if (key == "TYPE")
+            for (char s; is >> s;) types.push_back(s);
+        else if (key == "COUNT")
+            for (int s; is >> s;) counts.push_back(s);
+        else if (key == "POINTS")
+            have_points = static_cast<bool>(is >> points);
+        else if (key == "VIEWPOINT")
+        {
+            double v[7];
+            for (double& d : v)
+                if (!(is >> d) || !std::isfinite(d))
+                    throwFileError(file, "has a malformed VIEWPOINT line");
+            Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
+            if (std::abs(q.norm() - 1.0) > 1e-3)
+                throwFileError(file, "has a VIEWPOINT quaternion that is not unit");
+            out.viewpoint = Eigen::Isometry3d::Identity();
+            out.viewpoint.linear() = q.normalized().toRotationMatrix();
+            out.viewpoint.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+        }
+        else if (key == "DATA")
+        {
+            is >> data;
+            break;
+        }
+    }
+    if (data.empty()) throwFileError(file, "has no DATA line: not a PCD file?");
+    if (data != "ascii" && data != "binary")
+        throwFileError(file, "has DATA " + data + ", which is not supported (use ascii or binary)");
+    if (!have_points) throwFileError(file, "has no POINTS line");
+    if (counts.empty()) counts.assign(fields.size(), 1);
+    if (sizes.size() != fields.size() || types.size() != fields.size() ||
+        counts.size() != fields.size())
+        throwFileError(file, "has FIELDS, SIZE, TYPE and COUNT of different lengths");
+    int ix = -1, iy = -1, iz = -1, ii = -1;
+    std::vector<std::size_t> offset(fields.size());
+    std::size_t stride = 0;
+    for (std::size_t k = 0; k < fields.size(); ++k)
+    {
+        offset[k] = stride;
+        stride += static_cast<std::size_t>(sizes[k] * counts[k]);
+        const int kk = static_cast<int>(k);
+        if (fields[k] == "x") ix = kk;
+        if (fields[k] == "y") iy = kk;
+        if (fields[k] == "z") iz = kk;
+        if (fields[k] == "intensity") ii = kk;
+    }
+    if (ix < 0 || iy < 0 || iz < 0) throwFileError(file, "has no x, y and z fields");
+    for (int k : {ix, iy, iz, ii})
+        if (k >= 0 && (types[k] != 'F' || sizes[k] != 4))
+            throwFileError(file,
+                           "has a field " + fields[k] + " that is not float32 (TYPE F, SIZE 4)");
+    out.x.resize(points);
+    out.y.resize(points);
+    out.z.resize(points);
+    out.intensity.assign(points, 0.0f);
+    if (data == "binary")
+    {
+        std::vector<char> rec(stride);
+        for (std::size_t p = 0; p < points; ++p)
+        {
+            if (!f.read(rec.data(), static_cast<std::streamsize>(stride)))
+                throwFileError(file, "is truncated: POINTS says " + std::to_string(points) +
+                                         ", found " + std::to_string(p));
+            std::memcpy(&out.x[p], rec.data() + offset[ix], 4);
+            std::memcpy(&out.y[p], rec.data() + offset[iy], 4);
+            std::memcpy(&out.z[p], rec.data() + offset[iz], 4);
+            if (ii >= 0) std::memcpy(&out.intensity[p], rec.data() + offset[ii], 4);
+        }
+    }
+    else
+    {
+        std::vector<double> vals;
+        for (std::size_t p = 0; p < points; ++p)
+        {
+            std::string line;
+            if (!std::getline(f, line))
+                throwFileError(file, "is truncated: POINTS says " + std::to_string(points) +
+                                         ", found " + std::to_string(p));
+            std::istringstream is(line);
+            vals.clear();
+            for (double v; is >> v;) vals.push_back(v);
+            std::size_t col = 0;
+            std::vector<double> first(fields.size());
+            for (std::size_t k = 0; k < fields.size(); ++k)
+            {
+                if (col >= vals.size())
+                    throwFileError(file, "has a short line " + std::to_string(p + 1));
+                first[k] = vals[col];
+                col += static_cast<std::size_t>(counts[k]);
+            }
+            out.x[p] = static_cast<float>(first[ix]);
+            out.y[p] = static_cast<float>(first[iy]);
+            out.z[p] = static_cast<float>(first[iz]);
+            if (ii >= 0) out.intensity[p] = static_cast<float>(first[ii]);
+        }
+    }
+    return out;
+}
+
+}  // namespace hif::io

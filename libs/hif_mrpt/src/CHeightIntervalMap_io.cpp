@@ -1,0 +1,132 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   CHeightIntervalMap_io.cpp
+ * @brief  Serialization of the map (versioned; every version still read), and its text and
+ *         .3Dscene representation.
+ */
+#include <mrpt/opengl/COpenGLScene.h>
+#include <mrpt/opengl/CSetOfObjects.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <fstream>
+
+#include "hif/CHeightIntervalMap.h"
+
+using namespace hif;
+
+IMPLEMENTS_SERIALIZABLE(CHeightIntervalMap, CMetricMap, hif)
+
+namespace
+{
+/** Version 1 added the see-through options (Field::since_version); version 0 is still read. */
+constexpr uint8_t kSerializationVersion = 1;
+}  // namespace
+
+void CHeightIntervalMap::TInsertionOptions::writeToStream(mrpt::serialization::CArchive& out) const
+{
+    // Grouped by the version that added each field, so that every older layout is a prefix.
+    for (uint8_t v = 0; v <= kSerializationVersion; ++v)
+        forEachField<Params>(
+            [&](const Field<Params>& f, auto member)
+            {
+                if (f.since_version != v) return;
+                const auto value = this->*member;
+                if constexpr (std::is_same_v<std::decay_t<decltype(value)>, std::size_t>)
+                    out << static_cast<uint64_t>(value);
+                else
+                    out << value;
+            });
+}
+
+void CHeightIntervalMap::TInsertionOptions::readFromStream(mrpt::serialization::CArchive& in,
+                                                           uint8_t version)
+{
+    static_cast<Params&>(*this) = Params();  // fields newer than `version` keep the default
+    for (uint8_t v = 0; v <= version && v <= kSerializationVersion; ++v)
+        forEachField<Params>(
+            [&](const Field<Params>& f, auto member)
+            {
+                if (f.since_version != v) return;
+                auto& value = this->*member;
+                if constexpr (std::is_same_v<std::decay_t<decltype(value)>, std::size_t>)
+                {
+                    uint64_t u = 0;
+                    in >> u;
+                    value = static_cast<std::size_t>(u);
+                }
+                else
+                    in >> value;
+            });
+}
+
+uint8_t CHeightIntervalMap::serializeGetVersion() const { return kSerializationVersion; }
+
+void CHeightIntervalMap::serializeTo(mrpt::serialization::CArchive& out) const
+{
+    const GridGeometry& g = geometry();
+    forEachField<GridGeometry>([&](const Field<GridGeometry>&, auto member) { out << g.*member; });
+    insertionOptions.writeToStream(out);
+    out << genericMapParams;
+    const auto pillars = grid_.sortedPillars();
+    out << static_cast<uint64_t>(pillars.size());
+    for (const auto& [idx, pillar] : pillars)
+    {
+        out << idx.m << idx.n << pillar->logodds_empty << pillar->seen_top
+            << static_cast<uint32_t>(pillar->intervals.size());
+        for (const Interval& iv : pillar->intervals) out << iv.lo << iv.hi << iv.logodds;
+    }
+}
+
+void CHeightIntervalMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
+{
+    if (version > kSerializationVersion) MRPT_THROW_UNKNOWN_SERIALIZATION_VERSION(version);
+    GridGeometry g;
+    forEachField<GridGeometry>([&](const Field<GridGeometry>&, auto member) { in >> g.*member; });
+    insertionOptions.readFromStream(in, version);
+    in >> genericMapParams;
+    grid_ = PillarGrid(g, insertionOptions);  // validates the geometry and the options
+    applyOptions();                           // the thread count
+    uint64_t n = 0;
+    in >> n;
+    for (uint64_t k = 0; k < n; ++k)
+    {
+        PillarIndex idx;
+        Pillar pillar;
+        uint32_t count = 0;
+        in >> idx.m >> idx.n >> pillar.logodds_empty >> pillar.seen_top >> count;
+        if (count > params().max_intervals_per_pillar)
+            THROW_EXCEPTION_FMT("Corrupt hif map: pillar with %u intervals, above the bound",
+                                count);
+        pillar.intervals.resize(count);
+        for (Interval& iv : pillar.intervals) in >> iv.lo >> iv.hi >> iv.logodds;
+        grid_.setPillar(idx, std::move(pillar));
+    }
+    last_insert_ = {};
+}
+
+void CHeightIntervalMap::saveMetricMapRepresentationToFile(const std::string& prefix) const
+{
+    const GridGeometry& g = geometry();
+    const std::string txt = prefix + "_intervals.txt";
+    std::ofstream f(txt);
+    if (!f) THROW_EXCEPTION_FMT("Error writing to target file '%s'", txt.c_str());
+    f << "# x_min y_min x_max y_max z_bottom z_top p_static\n";
+    for (const auto& [idx, pillar] : grid_.sortedPillars())
+    {
+        const double x0 = g.origin_x + idx.m * g.pillar_size;
+        const double y0 = g.origin_y + idx.n * g.pillar_size;
+        for (const Interval& iv : pillar->intervals)
+            f << x0 << ' ' << y0 << ' ' << x0 + g.pillar_size << ' ' << y0 + g.pillar_size << ' '
+              << g.cellBottom(iv.lo) << ' ' << g.cellBottom(iv.hi) << ' ' << logistic(iv.logodds)
+              << '\n';
+    }
+    if (!f) THROW_EXCEPTION_FMT("Error writing to target file '%s'", txt.c_str());
+
+    const std::string scene_file = prefix + "_3D.3Dscene";
+    mrpt::opengl::COpenGLScene scene;
+    auto objs = mrpt::opengl::CSetOfObjects::Create();
+    getVisualizationInto(*objs);
+    scene.insert(objs);
+    if (!scene.saveToFile(scene_file))
+        THROW_EXCEPTION_FMT("Error writing to target file '%s'", scene_file.c_str());
+}

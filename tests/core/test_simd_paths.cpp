@@ -1,0 +1,124 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   test_simd_paths.cpp
+ * @brief  The AVX and the scalar paths of the per-point passes (quantization, the see-through
+ *         range image) give the same map and the same classes, bit for bit: on real KITTI
+ *         scans, and on a synthetic scan with invalid points.
+ */
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "hif/PillarGrid.h"
+#include "hif/detail/Cpu.h"
+#include "hif/io/KittiSequence.h"
+#include "kitti_fixture.h"
+
+using namespace hif;
+
+namespace
+{
+/** Restores the default (AVX allowed) when a test ends, whatever happened. */
+struct AvxGuard
+{
+    ~AvxGuard() { detail::setAvxAllowed(true); }
+};
+
+/** The offline configuration's additions on (see-through misses use the range image). */
+Params offlineParams()
+{
+    Params p;
+    p.p_empty_init = 0.42;
+    p.see_through_range = 35.0;
+    return p;
+}
+
+struct Result
+{
+    PillarGrid grid{GridGeometry(), offlineParams()};
+    std::vector<std::vector<uint8_t>> classes;
+};
+
+template <typename Scans>
+Result runWith(bool avx, const Scans& scans)
+{
+    detail::setAvxAllowed(avx);
+    Result r;
+    for (const auto& [view, T] : scans) r.grid.insertScan(view, T);
+    for (const auto& [view, T] : scans)
+    {
+        r.classes.emplace_back();
+        r.grid.classify(view, r.classes.back(), T);
+    }
+    return r;
+}
+}  // namespace
+
+TEST(SimdPaths, SameMapAndClassesOnRealScans)
+{
+    const std::string dir = test::kittiRoot() + "/sequences/08";
+    HIF_REQUIRE_KITTI_SEQUENCE(dir);
+    AvxGuard guard;
+    detail::setAvxAllowed(true);
+    if (!detail::useAvx()) GTEST_SKIP() << "this CPU has no AVX: there is one path only";
+
+    const io::KittiSequence seq(dir);
+    std::vector<io::Cloud> clouds;
+    std::vector<std::pair<PointsView, Eigen::Isometry3d>> scans;
+    for (std::size_t i = 0; i < seq.size(); ++i) clouds.push_back(seq.readScan(i));
+    for (std::size_t i = 0; i < seq.size(); ++i)
+    {
+        const io::Cloud& c = clouds[i];
+        scans.push_back({{c.x.data(), c.y.data(), c.z.data(), c.size()}, seq.pose(i)});
+    }
+    const Result avx = runWith(true, scans);
+    const Result scalar = runWith(false, scans);
+    EXPECT_GT(avx.grid.pillarCount(), 1000u);
+    EXPECT_TRUE(avx.grid == scalar.grid) << "the maps differ";
+    ASSERT_EQ(avx.classes.size(), scalar.classes.size());
+    for (std::size_t i = 0; i < avx.classes.size(); ++i)
+        EXPECT_EQ(avx.classes[i], scalar.classes[i]) << "classes of scan " << i << " differ";
+}
+
+// Points in LiDAR order with NaNs and far points among them, counts that are not multiples of
+// four, and a rotated sensor: every lane of the vector code and its scalar remainder are used.
+TEST(SimdPaths, SameMapAndClassesOnASyntheticScanWithInvalidPoints)
+{
+    AvxGuard guard;
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<double> u(0, 1);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    std::vector<std::vector<float>> xs, ys, zs;
+    std::vector<std::pair<PointsView, Eigen::Isometry3d>> scans;
+    for (int s = 0; s < 6; ++s)
+    {
+        std::vector<float> x, y, z;
+        for (int ring = 0; ring < 16; ++ring)
+            for (int k = 0; k < 1001 + s; ++k)
+            {
+                const double el = (-15.0 + 1.5 * ring) * M_PI / 180.0;
+                const double az = 2 * M_PI * k / (1001 + s);
+                const double r = 5.0 + 30.0 * u(rng);
+                x.push_back(float(r * std::cos(el) * std::cos(az)));
+                y.push_back(float(r * std::cos(el) * std::sin(az)));
+                z.push_back(float(r * std::sin(el)));
+                if (k % 97 == 5) z.back() = nan;
+                if (k % 389 == 7) x.back() = 3e12f;
+            }
+        xs.push_back(x), ys.push_back(y), zs.push_back(z);
+    }
+    for (int s = 0; s < 6; ++s)
+    {
+        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+        T.rotate(Eigen::AngleAxisd(0.4 * s, Eigen::Vector3d::UnitZ()) *
+                 Eigen::AngleAxisd(0.03, Eigen::Vector3d::UnitY()));
+        T.translation() = Eigen::Vector3d(1.5 * s, -0.7 * s, 1.7);
+        scans.push_back({{xs[s].data(), ys[s].data(), zs[s].data(), xs[s].size()}, T});
+    }
+    const Result a = runWith(true, scans);
+    const Result b = runWith(false, scans);
+    EXPECT_TRUE(a.grid == b.grid);
+    EXPECT_EQ(a.classes, b.classes);
+}
