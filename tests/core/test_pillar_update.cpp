@@ -202,6 +202,23 @@ TEST(PillarUpdate, TouchingEqualResultsAreMergedLosslessly)
                      g.intervals[k - 1].logodds == g.intervals[k].logodds);
 }
 
+TEST(CapIntervals, SmallestGapFirstThenSmallestLogOddsDifferenceThenTheLowerPair)
+{
+    // The gap decides before the log-odds: pair 0 has gap 1 and difference 2, pair 1 gap 5
+    // and difference 0; pair 0 is merged.
+    std::vector<Interval> v = {{0, 2, 0.0f}, {3, 5, 2.0f}, {10, 12, 2.0f}};
+    v.resize(capIntervals(v.data(), v.size(), 2));
+    EXPECT_EQ(v, (std::vector<Interval>{{0, 5, 1.0f}, {10, 12, 2.0f}}));
+    // Equal gaps: the smaller log-odds difference (pair 1: 0.5 against 1) is merged.
+    v = {{0, 2, 0.0f}, {3, 5, 1.0f}, {6, 8, 1.5f}};
+    v.resize(capIntervals(v.data(), v.size(), 2));
+    EXPECT_EQ(v, (std::vector<Interval>{{0, 2, 0.0f}, {3, 8, 1.25f}}));
+    // Equal gaps and differences: the lower pair.
+    v = {{0, 2, 0.0f}, {3, 5, 1.0f}, {6, 8, 2.0f}};
+    v.resize(capIntervals(v.data(), v.size(), 2));
+    EXPECT_EQ(v, (std::vector<Interval>{{0, 5, 0.5f}, {6, 8, 2.0f}}));
+}
+
 TEST(CapIntervals, MergesClosestPairWithWeightedLogOdds)
 {
     std::vector<Interval> v = {{0, 2, 1.0f}, {3, 4, 0.0f}, {10, 12, 2.0f}};
@@ -300,6 +317,35 @@ TEST(PillarGrid, NonFinitePointsAreCountedNotUsed)
     EXPECT_EQ(dyn[0], 0);
 }
 
+TEST(PillarGrid, APointAtExactlyTheThresholdIsStatic)
+{
+    // P(static) = 0.5 exactly (log-odds 0) against static_threshold 0.5: kept (">=").
+    PillarGrid grid;
+    grid.setPillar({0, 0}, pillar(0.2, {{0, 10, 0.0f}}));
+    EXPECT_TRUE(grid.isStatic(0.5, 0.5, 0.2));
+    const std::vector<float> x = {0.5f, 0.5f, 7.5f}, y = {0.5f, 0.5f, 7.5f}, z = {0.2f, 0.7f, 0.2f};
+    std::vector<uint8_t> dyn;
+    const ClassifyStats st = grid.classify({x.data(), y.data(), z.data(), x.size()}, dyn);
+    // In the interval: static; in the pillar's empty space (0.2): dynamic; in a pillar never
+    // seen, the prior p_empty_init 0.5, again exactly the threshold: static.
+    EXPECT_EQ(dyn, (std::vector<uint8_t>{0, 1, 0}));
+    EXPECT_EQ(st.static_points, 2u);
+}
+
+TEST(PillarGrid, HeightsTwoEmptyCellsApartShareAnIntervalThreeApartDoNot)
+{
+    // merge_gap 0.1 m at 0.05 m cells: up to 2 empty cells are bridged (no padding here).
+    Params prm = Params::paper();
+    prm.interval_padding = 0.0;
+    for (const auto& [z_top, intervals] : {std::pair{0.16f, 1u}, std::pair{0.21f, 2u}})
+    {
+        PillarGrid grid(GridGeometry(), prm);
+        const std::vector<float> x = {0.5f, 0.5f}, y = {0.5f, 0.5f}, z = {0.01f, z_top};
+        grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+        EXPECT_EQ(grid.findPillar({0, 0})->intervals.size(), intervals) << "top at " << z_top;
+    }
+}
+
 TEST(PillarGrid, SetPillarRejectsBrokenInvariants)
 {
     PillarGrid grid;
@@ -355,6 +401,36 @@ TEST(HighHeightPreservation, IntervalsAboveTheCeilingKeepTheirProbability)
     Pillar c = pillar(0.5, {iv(0, 5, 0.7), iv(25, 35, 0.7)});
     ours.update(c, t.data(), t.size(), /*ceiling=*/30);
     EXPECT_NEAR(probOf(c.intervals[1]), 0.629213483, kTol);
+}
+
+TEST(HighHeightPreservation, AnIntervalStartingAtTheCeilingIsKeptOneCellLowerIsNot)
+{
+    PillarUpdater ours(oursModel(), 1000);
+    const std::vector<Span> t{{0, 5}};
+    Pillar at = pillar(0.5, {iv(0, 5, 0.7), iv(30, 40, 0.7)});
+    ours.update(at, t.data(), t.size(), /*ceiling=*/30);
+    EXPECT_NEAR(probOf(at.intervals[1]), 0.7, kTol);  // [30, 40) is all out of view
+    Pillar below = pillar(0.5, {iv(0, 5, 0.7), iv(29, 40, 0.7)});
+    ours.update(below, t.data(), t.size(), /*ceiling=*/30);
+    ASSERT_GE(below.intervals.size(), 2u);
+    EXPECT_NEAR(probOf(below.intervals[1]), 0.629213483, kTol);  // cell 29 was in view
+}
+
+TEST(UnseenHeightPrior, AnIntervalStartingAtSeenTopIsUnseen)
+{
+    // seen_top is exclusive: cell 20 was never in view, so a new interval from it starts from
+    // p_empty_init (0.5 -> 0.571), not from the pillar's p_empty (0.3 -> 0.364).
+    Pillar g = pillar(0.3, {});
+    g.seen_top = 20;
+    PillarUpdater ours(oursModel(), 1000);
+    const std::vector<Span> at{{20, 25}};
+    ours.update(g, at.data(), at.size(), /*ceiling=*/40);
+    EXPECT_NEAR(probOf(g.intervals[0]), 0.571428571, kTol);
+    Pillar h = pillar(0.3, {});
+    h.seen_top = 20;
+    const std::vector<Span> below{{19, 25}};  // starts in view: p_empty
+    ours.update(h, below.data(), below.size(), /*ceiling=*/40);
+    EXPECT_NEAR(probOf(h.intervals[0]), 0.363636364, kTol);
 }
 
 TEST(UnseenHeightPrior, NewIntervalsAboveSeenTopStartFromPEmptyInit)
@@ -457,9 +533,25 @@ void beamsToward(double x, double y, double z0, double z1, double range, std::ve
     }
 }
 
-/** A "car" in pillar (20, 0) seen once; then one scan whose beams toward it return at
- *  `returns` (ranges). Is the car still static? */
-bool carStaticAfter(double see_through_range, const std::vector<double>& returns)
+/** Beams toward the car's pillar between heights z0 and z1, returning at `range`. */
+struct Beams
+{
+    double z0, z1, range;
+};
+
+/** A "car" in pillar (20, 0) seen once; then one scan whose beams toward it return as
+ *  `beams` say. Is the car still static? */
+bool carStaticAfter(double see_through_range, const std::vector<Beams>& beams);
+
+/** carStaticAfter() with every beam toward the car returning at each of `returns`. */
+bool carStaticAfterReturns(double see_through_range, const std::vector<double>& returns)
+{
+    std::vector<Beams> beams;
+    for (double r : returns) beams.push_back({-1.1, -0.3, r});
+    return carStaticAfter(see_through_range, beams);
+}
+
+bool carStaticAfter(double see_through_range, const std::vector<Beams>& beams)
 {
     Params prm;
     prm.see_through_range = see_through_range;
@@ -474,7 +566,7 @@ bool carStaticAfter(double see_through_range, const std::vector<double>& returns
     grid.insertScan({x.data(), y.data(), z.data(), x.size()});
     EXPECT_TRUE(grid.isStatic(20.5, 0.5, -0.7));
     x.clear(), y.clear(), z.clear();
-    for (double r : returns) beamsToward(20.5, 0.5, -1.1, -0.3, r, x, y, z);
+    for (const Beams& b : beams) beamsToward(20.5, 0.5, b.z0, b.z1, b.range, x, y, z);
     const InsertStats st = grid.insertScan({x.data(), y.data(), z.data(), x.size()});
     EXPECT_EQ(grid.findPillar({20, 0})->intervals.size(), 1u);
     EXPECT_GT(st.pillars_created, 0u);  // the returns landed in other pillars
@@ -485,13 +577,25 @@ bool carStaticAfter(double see_through_range, const std::vector<double>& returns
 TEST(SeeThroughMisses, BeamsThatPassedThroughAPillarEmptyIt)
 {
     // Off (the paper): a pillar no return falls in is untouched.
-    EXPECT_TRUE(carStaticAfter(0.0, {40.0}));
+    EXPECT_TRUE(carStaticAfterReturns(0.0, {40.0}));
     // On: the beams returned 20 m beyond the car's pillar, so it is free now.
-    EXPECT_FALSE(carStaticAfter(40.0, {40.0}));
+    EXPECT_FALSE(carStaticAfterReturns(40.0, {40.0}));
     // A return near the pillar (within the 2.5 m margin) vetoes: something is there.
-    EXPECT_TRUE(carStaticAfter(40.0, {40.0, 22.0}));
+    EXPECT_TRUE(carStaticAfterReturns(40.0, {40.0, 22.0}));
     // Returns in front of it (occlusion) say nothing about it.
-    EXPECT_TRUE(carStaticAfter(40.0, {10.0}));
+    EXPECT_TRUE(carStaticAfterReturns(40.0, {10.0}));
     // Beyond see_through_range the pillar is not considered.
-    EXPECT_TRUE(carStaticAfter(15.0, {40.0}));
+    EXPECT_TRUE(carStaticAfterReturns(15.0, {40.0}));
+}
+
+TEST(SeeThroughMisses, AReturnNearThePillarVetoesBeamsThatPassedThroughIt)
+{
+    // The lower beams pass through (return 20 m beyond); the upper ones return just behind the
+    // pillar, within the margin: something is there, so no miss.
+    const Beams through{-1.1, -0.75, 40.0}, near{-0.6, -0.3, 22.0};
+    EXPECT_FALSE(carStaticAfter(40.0, std::vector<Beams>{through}));
+    EXPECT_TRUE(carStaticAfter(40.0, std::vector<Beams>{through, near}));
+    // Just beyond the margin (22.0 + 2.5 behind the axis at 20.5 m), the same return counts
+    // as passing through.
+    EXPECT_FALSE(carStaticAfter(40.0, std::vector<Beams>{through, {-0.6, -0.3, 23.5}}));
 }
