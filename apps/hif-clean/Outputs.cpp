@@ -47,11 +47,14 @@ void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::ap
 {
     auto& [x, y, z, intensity] = buf_;
     worldPoints(scan, x, y, z, intensity);
+    // Classified from the observation and its pose, exactly as it was inserted (the world
+    // points above, in float, are what the clouds get).
     const auto t0 = Clock::now();
-    const hif::PointsView view{x.data(), y.data(), z.data(), x.size()};
     std::vector<uint8_t> dyn;
-    const auto st = map.grid().classify(view, dyn);
+    const auto st = map.classify(*scan.obs, scan.robot_pose, dyn);
     classify_ms.push_back(msSince(t0));
+    if (dyn.size() != x.size())
+        throw std::logic_error("classify() and observationToWorldPoints() disagree on the size");
 
     const auto t1 = Clock::now();
     std::vector<uint32_t> labels(dyn.size());

@@ -15,6 +15,7 @@
 #include <mrpt/system/filesystem.h>
 
 #include <fstream>
+#include <random>
 #include <type_traits>
 
 #include "hif/CHeightIntervalMap.h"
@@ -151,6 +152,39 @@ TEST(CHeightIntervalMap, ClassifyAndLikelihoodFollowTheIntervals)
     EXPECT_FLOAT_EQ(map.compute3DMatchingRatio(&query, CPose3D(), {}), 0.5f);
     // Shifted up by 1 m: the ground point moves into the box interval (dynamic).
     EXPECT_FLOAT_EQ(map.compute3DMatchingRatio(&query, CPose3D(0, 0, 1.0, 0, 0, 0), {}), 0.0f);
+}
+
+// Classifying an observation goes through the insertion's own conversion (sensor points and
+// robot (+) sensor pose), so every point of a scan inserted once is static, however close to a
+// cell border it lies. Far from the origin, world coordinates in float are 1 mm apart, and
+// classifying those instead puts some points in the neighbouring cell.
+TEST(CHeightIntervalMap, ClassifyingAnObservationPlacesItsPointsAsInsertionDid)
+{
+    std::mt19937 rng(8);
+    std::uniform_real_distribution<double> u(-15.0, 15.0);
+    std::vector<TPoint3D> pts;
+    for (int i = 0; i < 20000; ++i) pts.emplace_back(u(rng), u(rng), 0.1 * u(rng));
+    const CPose3D sensor(0.4, 0.1, 1.7, mrpt::DEG2RAD(10.0), 0.02, 0.0);
+    const CPose3D robot(12345.6, -6789.1, 3.0, mrpt::DEG2RAD(33.0), 0.0, 0.01);
+    const auto obs = cloud(pts, sensor);
+    CHeightIntervalMap map;
+    ASSERT_TRUE(map.insertObservation(*obs, robot));
+
+    std::vector<uint8_t> dyn;
+    const hif::ClassifyStats st = map.classify(*obs, robot, dyn);
+    ASSERT_EQ(dyn.size(), pts.size());
+    EXPECT_EQ(st.dynamic_points, 0u);
+
+    std::vector<float> xs, ys, zs;
+    ASSERT_TRUE(CHeightIntervalMap::observationToWorldPoints(*obs, robot, xs, ys, zs));
+    mrpt::maps::CSimplePointsMap world;
+    for (std::size_t i = 0; i < xs.size(); ++i) world.insertPoint(xs[i], ys[i], zs[i]);
+    const hif::ClassifyStats from_world = map.classify(world, dyn);
+    EXPECT_GT(from_world.dynamic_points, 0u) << "float world points did not move: the test "
+                                                "no longer shows why the conversion matters";
+
+    mrpt::obs::CObservationGPS gps;
+    EXPECT_THROW(map.classify(gps, robot, dyn), std::invalid_argument);
 }
 
 // Queries never change the map: an option takes effect at the next insertion (or
