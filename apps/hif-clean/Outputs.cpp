@@ -43,7 +43,7 @@ Outputs::Outputs(const std::string& dir, std::size_t first_frame,
 }
 
 void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::apps::Scan& scan,
-                               std::size_t k)
+                               std::size_t k, const hif::ScanWindow* window)
 {
     auto& [x, y, z, intensity] = buf_;
     worldPoints(scan, x, y, z, intensity);
@@ -51,7 +51,8 @@ void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::ap
     // points above, in float, are what the clouds get).
     const auto t0 = Clock::now();
     std::vector<uint8_t> dyn;
-    const auto st = map.classify(*scan.obs, scan.robot_pose, dyn);
+    const auto st = window ? map.classify(*scan.obs, scan.robot_pose, dyn, *window, k)
+                           : map.classify(*scan.obs, scan.robot_pose, dyn);
     classify_ms.push_back(msSince(t0));
     if (dyn.size() != x.size())
         throw std::logic_error("classify() and observationToWorldPoints() disagree on the size");
@@ -71,6 +72,8 @@ void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::ap
     points_kept += st.static_points;
     points_removed += st.dynamic_points;
     points_invalid += st.invalid_points;
+    points_near += st.near_points;
+    points_seen_through += st.seen_through_points;
 }
 
 void Outputs::close()

@@ -36,13 +36,16 @@ public:
     /** `static_files` receive the kept points; removed.{ply,pcd} in `dir` the others. */
     Outputs(const std::string& dir, std::size_t first_frame, std::vector<std::string> static_files);
 
-    /** Classifies scan number `k` against `map` and writes its points and predictions. */
+    /** Classifies scan number `k` against `map` and writes its points and predictions. With
+     *  `window` (offline), the free-space test uses it, the scan being its scan `k`; without,
+     *  the map's own window (online). */
     void classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::apps::Scan& scan,
-                          std::size_t k);
+                          std::size_t k, const hif::ScanWindow* window = nullptr);
     /** Completes the cloud files. */
     void close();
 
     std::size_t points_in = 0, points_kept = 0, points_removed = 0, points_invalid = 0;
+    std::size_t points_near = 0, points_seen_through = 0;
     std::vector<double> classify_ms;
     double write_ms_total = 0;
 

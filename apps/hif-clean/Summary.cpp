@@ -36,6 +36,8 @@ void writeSummary(const std::string& file, const SummaryInfo& info,
     j["points_kept"] = out.points_kept;
     j["points_removed"] = out.points_removed;
     j["points_invalid"] = out.points_invalid;
+    j["points_near"] = out.points_near;
+    j["points_seen_through"] = out.points_seen_through;
     j["pillars"] = map.pillarCount();
     j["intervals"] = map.intervalCount();
     j["max_intervals_per_pillar_seen"] = map.grid().maxIntervalsInAPillar();
@@ -66,22 +68,24 @@ void printReport(const std::string& tag, const std::string& out_dir, const std::
 {
     const auto per_scan = hif::apps::timeStats(t.scan_ms);
     const auto cls = hif::apps::timeStats(out.classify_ms);
-    std::cout << std::fixed << std::setprecision(2) << tag << " scans " << t.scans << ", points "
-              << out.points_in << ": kept " << out.points_kept << ", removed " << out.points_removed
-              << " ("
-              << 100.0 * double(out.points_removed) /
-                     double(std::max<std::size_t>(1, out.points_in))
-              << "%)"
-              << (out.points_invalid ? ", invalid " + std::to_string(out.points_invalid) : "")
-              << "\n"
-              << tag << " map: " << map.pillarCount() << " pillars, " << map.intervalCount()
-              << " intervals, " << double(map.grid().memoryBytes()) / (1024.0 * 1024.0) << " MiB\n"
-              << tag << " ms per scan (" << (online ? "insert+classify" : "insert") << "): median "
-              << per_scan.median << ", p90 " << per_scan.p90 << ", max " << per_scan.max
-              << "; classify median " << cls.median << "\n"
-              << tag << " total " << t.total_s << " s, peak memory " << hif::apps::peakRssMiB()
-              << " MiB\n"
-              << tag << " wrote " << out_dir << "/{static_map,removed}.{ply,pcd}, predictions/, "
-              << "map.hifmap, summary.json" << (dm_output.empty() ? "" : " and " + dm_output)
-              << "\n";
+    std::cout
+        << std::fixed << std::setprecision(2) << tag << " scans " << t.scans << ", points "
+        << out.points_in << ": kept " << out.points_kept << ", removed " << out.points_removed
+        << " ("
+        << 100.0 * double(out.points_removed) / double(std::max<std::size_t>(1, out.points_in))
+        << "%)" << (out.points_invalid ? ", invalid " + std::to_string(out.points_invalid) : "")
+        << (out.points_near ? ", nearer than min_range " + std::to_string(out.points_near) : "")
+        << (out.points_seen_through
+                ? "; the free-space test removed " + std::to_string(out.points_seen_through)
+                : "")
+        << "\n"
+        << tag << " map: " << map.pillarCount() << " pillars, " << map.intervalCount()
+        << " intervals, " << double(map.grid().memoryBytes()) / (1024.0 * 1024.0) << " MiB\n"
+        << tag << " ms per scan (" << (online ? "insert+classify" : "insert") << "): median "
+        << per_scan.median << ", p90 " << per_scan.p90 << ", max " << per_scan.max
+        << "; classify median " << cls.median << "\n"
+        << tag << " total " << t.total_s << " s, peak memory " << hif::apps::peakRssMiB()
+        << " MiB\n"
+        << tag << " wrote " << out_dir << "/{static_map,removed}.{ply,pcd}, predictions/, "
+        << "map.hifmap, summary.json" << (dm_output.empty() ? "" : " and " + dm_output) << "\n";
 }

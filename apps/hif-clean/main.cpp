@@ -12,6 +12,7 @@
 #include <mrpt/maps/CMultiMetricMap.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -29,10 +30,12 @@ namespace
 {
 const std::string kTag = "[hif-clean]";
 
-/** The shipped KITTI configuration for the mode: installed copy first, then the source tree's. */
-std::string defaultConfig(bool online)
+/** The shipped configuration for the mode and input (installed copy first, then the source
+ *  tree's): kitti-online.ini online, dynamicmap.ini for a DynamicMap folder, else kitti.ini. */
+std::string defaultConfig(bool online, bool dynamicmap)
 {
-    const std::string name = online ? "kitti-online.ini" : "kitti.ini";
+    const std::string name =
+        online ? "kitti-online.ini" : (dynamicmap ? "dynamicmap.ini" : "kitti.ini");
     for (const std::string& dir :
          {std::string(HIF_INSTALLED_SHARE_DIR), std::string(HIF_SOURCE_SHARE_DIR)})
         if (fs::exists(dir + "/config/" + name)) return dir + "/config/" + name;
@@ -65,8 +68,8 @@ struct Cli
     TCLAP::ValueArg<std::string> config{
         "c",
         "config",
-        "Map definition .ini (default: the shipped share/hif/config/kitti.ini, or "
-        "kitti-online.ini with --online)",
+        "Map definition .ini (default: the shipped share/hif/config/kitti.ini; "
+        "kitti-online.ini with --online; dynamicmap.ini for a DynamicMap folder)",
         false,
         "",
         "config.ini",
@@ -132,10 +135,6 @@ void setUp(Cli& cli, Run& run)
     run.hold_scans = cli.hold_scans.getValue();
     run.show_progress = !cli.quiet.getValue();
     run.section = cli.section.getValue();
-    run.cfg_file = cli.config.isSet() ? cli.config.getValue() : defaultConfig(run.online);
-    if (!fs::exists(run.cfg_file))
-        throw std::runtime_error("config '" + run.cfg_file + "' not found");
-
     for (const char* f : {"summary.json", "map.hifmap", "static_map.ply", "static_map.pcd",
                           "removed.ply", "removed.pcd", "predictions"})
         hif::apps::refuseToOverwrite(run.out_dir + "/" + f, cli.overwrite.getValue(),
@@ -147,6 +146,10 @@ void setUp(Cli& cli, Run& run)
         run.dm_output = run.input + "/hif_output.pcd";
         hif::apps::refuseToOverwrite(run.dm_output, cli.overwrite.getValue(), "--overwrite");
     }
+    run.cfg_file = cli.config.isSet() ? cli.config.getValue()
+                                      : defaultConfig(run.online, run.source->isDynamicMapFolder());
+    if (!fs::exists(run.cfg_file))
+        throw std::runtime_error("config '" + run.cfg_file + "' not found");
 
     // Maps from the .ini, through MRPT's own machinery.
     mrpt::config::CConfigFile cfg(run.cfg_file);
@@ -158,6 +161,8 @@ void setUp(Cli& cli, Run& run)
         throw std::runtime_error(
             "config '" + run.cfg_file + "', section [" + run.section +
             "] defines no CHeightIntervalMap (set CHeightIntervalMap_count=1)");
+    // Offline, pass 2 keeps its own window of the scans around each one.
+    run.hif_map->insertionOptions.online_window = run.online;
     if (cli.threads.isSet())
     {
         if (cli.threads.getValue() == 0) throw std::runtime_error("--threads must be >= 1");
@@ -217,28 +222,37 @@ std::vector<hif::apps::Scan> insertAll(Run& run, Outputs& out, Timings& t)
     return held;
 }
 
-/** Pass 2 (offline): every point of every scan classified against the final map. */
+/** Pass 2 (offline): every point of every scan classified against the final map, and, with
+ *  the free-space test on, against the free_space_window scans on each side of it (read ahead
+ *  and kept in a window of range images). */
 void classifyAll(Run& run, std::vector<hif::apps::Scan>& held, Outputs& out, std::size_t scans)
 {
     hif::apps::Progress progress(kTag, "classifying", scans, run.show_progress);
-    std::size_t k = 0;
-    if (run.hold_scans)
-        for (hif::apps::Scan& s : held)
-        {
-            out.classifyAndWrite(*run.hif_map, s, k);
-            s.obs.reset();  // release each scan once it is written
-            progress.update(++k);
-        }
-    else
+    const std::size_t w = run.hif_map->params().free_space_window;
+    hif::ScanWindow window;
+    std::deque<hif::apps::Scan> ahead;  // read, not yet classified
+    std::size_t next = 0;               // the next scan to read
+    if (!run.hold_scans) run.source->rewind();
+    for (std::size_t k = 0; k < scans; ++k)
     {
-        run.source->rewind();
-        hif::apps::Scan scan;
-        while (run.source->next(scan))
+        while (next < scans && next <= k + w)
         {
-            out.classifyAndWrite(*run.hif_map, scan, k);
-            scan.obs->unload();
-            progress.update(++k);
+            hif::apps::Scan s;
+            if (run.hold_scans)
+                s = std::move(held[next]);  // released once classified
+            else if (!run.source->next(s))
+                throw std::runtime_error("input '" + run.input + "' held " + std::to_string(scans) +
+                                         " scans when first read, " + std::to_string(next) +
+                                         " now");
+            if (w > 0) hif::CHeightIntervalMap::addToWindow(window, next, *s.obs, s.robot_pose);
+            ahead.push_back(std::move(s));
+            ++next;
         }
+        out.classifyAndWrite(*run.hif_map, ahead.front(), k, w > 0 ? &window : nullptr);
+        if (!run.hold_scans) ahead.front().obs->unload();
+        ahead.pop_front();
+        window.dropBefore(k + 1 >= w ? k + 1 - w : 0);
+        progress.update(k + 1);
     }
     progress.finish();
 }

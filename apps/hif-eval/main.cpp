@@ -3,11 +3,13 @@
  * @file   hif-eval/main.cpp
  * @brief  Point-level scores of moving-object predictions against SemanticKITTI labels, with
  *         the protocol of the dynamic-points-removal benchmark: labels 0 and 1 excluded, classes
- *         252-259 dynamic; SA, DA, AA, HA per scan and in total.
+ *         252-259 dynamic; SA, DA, AA, HA per scan and in total, DA per moving class, and SA
+ *         and DA per range band when the scans are given.
  */
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +18,9 @@
 #include <nlohmann/json.hpp>
 
 #include "hif/apps/Cli.h"
+#include "hif/io/Breakdown.h"
+#include "hif/io/CloudFiles.h"
+#include "hif/io/FileError.h"
 #include "hif/io/Labels.h"
 
 namespace fs = std::filesystem;
@@ -28,10 +33,11 @@ struct Cli
         "hif-eval: scores predictions (SemanticKITTI .label files, 251 or 252-259 = moving, "
         "anything else = static) against ground-truth labels, point by point: labels 0 and 1 "
         "are not scored, classes 252-259 are dynamic. SA = static kept / static, DA = dynamic "
-        "removed / dynamic, AA = sqrt(SA DA), HA = their harmonic mean, in percent. Every "
-        "prediction file that has a label file of the same name is scored (the sizes must "
-        "match); predictions without ground truth (e.g. scans past the labelled part of a "
-        "sequence) are counted and reported.",
+        "removed / dynamic, AA = sqrt(SA DA), HA = their harmonic mean, in percent; also DA "
+        "per moving class and, with --scans, SA and DA per range band. Every prediction file "
+        "that has a label file of the same name is scored (the sizes must match); predictions "
+        "without ground truth (e.g. scans past the labelled part of a sequence) are counted and "
+        "reported.",
         ' ', "0.1"};
     TCLAP::ValueArg<std::string> labels{
         "", "labels", "Ground-truth folder (NNNNNN.label)", true, "", "folder", cmd};
@@ -43,9 +49,28 @@ struct Cli
         "",
         "folder",
         cmd};
+    TCLAP::ValueArg<std::string> scans{
+        "",
+        "scans",
+        "The scans, for ranges: a KITTI velodyne folder (NNNNNN.bin, sensor frame) or a "
+        "DynamicMap pcd folder (NNNNNN.pcd, world frame, sensor pose in VIEWPOINT)",
+        false,
+        "",
+        "folder",
+        cmd};
+    TCLAP::ValueArg<double> ego_radius{
+        "",
+        "ego-radius",
+        "With --scans: also score as the DynamicMap benchmark does, where every point within "
+        "this many metres of the sensor (the car's own returns, mostly unlabelled) is dynamic "
+        "(default: 3; 0 = no such line)",
+        false,
+        3.0,
+        "metres",
+        cmd};
     TCLAP::ValueArg<std::string> json{
         "", "json", "Also write the scores to this JSON file", false, "", "file.json", cmd};
-    TCLAP::SwitchArg quiet{"q", "quiet", "Print the total only, not every scan", cmd};
+    TCLAP::SwitchArg quiet{"q", "quiet", "Print the totals only, not every scan", cmd};
 };
 
 nlohmann::ordered_json toJson(const hif::io::Scores& s)
@@ -63,21 +88,67 @@ nlohmann::ordered_json toJson(const hif::io::Scores& s)
     return j;
 }
 
+/** Ranges from the sensor of the points of scan `stem` (NaN when `dir` is empty). */
+std::vector<double> ranges(const std::string& dir, const std::string& stem, std::size_t n)
+{
+    if (dir.empty()) return std::vector<double>(n, std::nan(""));
+    std::vector<double> r;
+    const fs::path bin = fs::path(dir) / (stem + ".bin"), pcd = fs::path(dir) / (stem + ".pcd");
+    if (fs::exists(bin))
+    {
+        std::ifstream f(bin, std::ios::binary);
+        std::vector<float> p(4 * n);
+        if (fs::file_size(bin) != p.size() * sizeof(float) ||
+            !f.read(reinterpret_cast<char*>(p.data()),
+                    static_cast<std::streamsize>(p.size() * sizeof(float))))
+            hif::io::throwFileError(bin.string(), "does not hold the " + std::to_string(n) +
+                                                      " points of its label file");
+        for (std::size_t i = 0; i < n; ++i)
+            r.push_back(std::sqrt(double(p[4 * i]) * p[4 * i] +
+                                  double(p[4 * i + 1]) * p[4 * i + 1] +
+                                  double(p[4 * i + 2]) * p[4 * i + 2]));
+        return r;
+    }
+    if (fs::exists(pcd))
+    {
+        const hif::io::PcdCloud c = hif::io::readPcd(pcd.string());
+        if (c.size() != n)
+            hif::io::throwFileError(pcd.string(), "does not hold the " + std::to_string(n) +
+                                                      " points of its label file");
+        const Eigen::Vector3d s = c.viewpoint.translation();
+        for (std::size_t i = 0; i < n; ++i)
+            r.push_back((Eigen::Vector3d(c.x[i], c.y[i], c.z[i]) - s).norm());
+        return r;
+    }
+    hif::io::throwFileError(dir, "has neither " + stem + ".bin nor " + stem + ".pcd");
+}
+
+void printRow(const char* name, const hif::io::Scores& s)
+{
+    std::printf("%-14s %9zu %9zu %7.2f %7.2f %7.2f %7.2f\n", name, s.static_total, s.dynamic_total,
+                s.sa(), s.da(), s.aa(), s.ha());
+}
+
 int run(Cli& cli)
 {
     const std::string pred_dir = cli.predictions.getValue();
     const std::string label_dir = cli.labels.getValue();
-    if (!fs::is_directory(pred_dir))
-        throw std::runtime_error("predictions folder '" + pred_dir + "' does not exist");
-    if (!fs::is_directory(label_dir))
-        throw std::runtime_error("labels folder '" + label_dir + "' does not exist");
+    const std::string scan_dir = cli.scans.getValue();
+    for (const auto& [dir, what] :
+         {std::pair{pred_dir, "predictions"}, {label_dir, "labels"}, {scan_dir, "scans"}})
+        if (!dir.empty() && !fs::is_directory(dir))
+            throw std::runtime_error(std::string(what) + " folder '" + dir + "' does not exist");
+    const double ego_radius = cli.ego_radius.getValue();
+    if (!(ego_radius >= 0.0))
+        throw std::runtime_error("--ego-radius must be >= 0, not " + std::to_string(ego_radius));
     std::vector<std::string> names;
     for (const auto& e : fs::directory_iterator(pred_dir))
         if (e.path().extension() == ".label") names.push_back(e.path().filename().string());
     std::sort(names.begin(), names.end());
     if (names.empty()) throw std::runtime_error("no .label files in '" + pred_dir + "'");
 
-    hif::io::Scores total;
+    hif::io::Breakdown total;
+    hif::io::Scores with_ego;  ///< the DynamicMap benchmark's way (needs ranges)
     std::size_t without_truth = 0, scored = 0;
     nlohmann::ordered_json scans = nlohmann::ordered_json::array();
     if (!cli.quiet.getValue())
@@ -92,23 +163,27 @@ int run(Cli& cli)
             continue;
         }
         ++scored;
+        const std::string stem = fs::path(name).stem().string();
         const auto truth = hif::io::readLabels(truth_file);
         const auto pred = hif::io::readLabels((fs::path(pred_dir) / name).string());
         if (truth.size() != pred.size())
             throw std::runtime_error("'" + (fs::path(pred_dir) / name).string() + "' has " +
                                      std::to_string(pred.size()) + " points, '" + truth_file +
                                      "' has " + std::to_string(truth.size()));
-        hif::io::Scores s;
+        const std::vector<double> range = ranges(scan_dir, stem, truth.size());
+        hif::io::Breakdown s;
         for (std::size_t i = 0; i < truth.size(); ++i)
-            s.add(truth[i], hif::io::isPredictedMoving(pred[i]));
+        {
+            const bool removed = hif::io::isPredictedMoving(pred[i]);
+            s.add(truth[i], removed, range[i]);
+            const bool ego = range[i] < ego_radius;
+            with_ego.add(ego ? 252u : truth[i], removed);
+        }
         total += s;
-        auto js = toJson(s);
-        js["scan"] = fs::path(name).stem().string();
+        auto js = toJson(s.total);
+        js["scan"] = stem;
         scans.push_back(js);
-        if (!cli.quiet.getValue())
-            std::printf("%-14s %9zu %9zu %7.2f %7.2f %7.2f %7.2f\n",
-                        fs::path(name).stem().string().c_str(), s.static_total, s.dynamic_total,
-                        s.sa(), s.da(), s.aa(), s.ha());
+        if (!cli.quiet.getValue()) printRow(stem.c_str(), s.total);
     }
     if (scored == 0)
         throw std::runtime_error("none of the " + std::to_string(names.size()) +
@@ -117,10 +192,40 @@ int run(Cli& cli)
     if (without_truth > 0)
         std::printf("[hif-eval] %zu of %zu predictions have no label file in '%s': not scored\n",
                     without_truth, names.size(), label_dir.c_str());
-    std::printf("%-14s %9zu %9zu %7.2f %7.2f %7.2f %7.2f\n", "TOTAL", total.static_total,
-                total.dynamic_total, total.sa(), total.da(), total.aa(), total.ha());
-    std::printf("[hif-eval] %zu scans: SA %.2f  DA %.2f  AA %.2f  HA %.2f\n", scored, total.sa(),
-                total.da(), total.aa(), total.ha());
+
+    nlohmann::ordered_json classes, bands;
+    std::printf("%-22s %9s %9s %7s\n", "moving class", "dynamic", "removed", "DA");
+    for (const auto& [cls, s] : total.by_moving_class)
+    {
+        const std::string n = hif::io::movingClassName(cls);
+        std::printf("%-22s %9zu %9zu %7.2f\n", n.c_str(), s.dynamic_total, s.dynamic_removed,
+                    s.da());
+        classes[n] = {{"DA", s.da()},
+                      {"dynamic_total", s.dynamic_total},
+                      {"dynamic_removed", s.dynamic_removed}};
+    }
+    if (total.has_ranges)
+    {
+        std::printf("%-14s %9s %9s %7s %7s\n", "range (m)", "static", "dynamic", "SA", "DA");
+        for (std::size_t b = 0; b < total.by_range.size(); ++b)
+        {
+            const hif::io::Scores& s = total.by_range[b];
+            const std::string n = hif::io::rangeBandName(b);
+            std::printf("%-14s %9zu %9zu %7.2f %7.2f\n", n.c_str(), s.static_total, s.dynamic_total,
+                        s.sa(), s.da());
+            auto jb = toJson(s);
+            jb["band"] = n;
+            bands.push_back(jb);
+        }
+        if (ego_radius > 0.0)
+            std::printf(
+                "[hif-eval] counting unlabelled points within %.1f m as dynamic (the "
+                "DynamicMap benchmark): SA %.2f  DA %.2f  AA %.2f\n",
+                ego_radius, with_ego.sa(), with_ego.da(), with_ego.aa());
+    }
+    printRow("TOTAL", total.total);
+    std::printf("[hif-eval] %zu scans: SA %.2f  DA %.2f  AA %.2f  HA %.2f\n", scored,
+                total.total.sa(), total.total.da(), total.total.aa(), total.total.ha());
 
     if (cli.json.isSet())
     {
@@ -129,7 +234,17 @@ int run(Cli& cli)
         j["predictions"] = pred_dir;
         j["scans_scored"] = scored;
         j["predictions_without_labels"] = without_truth;
-        j["total"] = toJson(total);
+        j["total"] = toJson(total.total);
+        j["per_moving_class"] = classes.is_null() ? nlohmann::ordered_json::object() : classes;
+        if (total.has_ranges)
+        {
+            j["per_range"] = bands;
+            if (ego_radius > 0.0)
+            {
+                j["with_ego_points"] = toJson(with_ego);
+                j["ego_radius"] = ego_radius;
+            }
+        }
         j["per_scan"] = scans;
         std::ofstream f(cli.json.getValue());
         f << std::setw(2) << j << "\n";

@@ -32,6 +32,8 @@ void changeField(S& s, const Field<S>& field, Member member)
     using T = std::decay_t<decltype(v)>;
     if constexpr (std::is_same_v<T, bool>)
         v = !v;
+    else if constexpr (std::is_integral_v<T>)
+        v = field.bounds.contains(static_cast<double>(v + 1)) ? v + 1 : v - 1;
     else
         v = static_cast<T>(otherValue(field.bounds, static_cast<double>(v)));
 }

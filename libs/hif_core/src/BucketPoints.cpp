@@ -44,13 +44,14 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
                   for (std::size_t c = c0; c < c1; ++c)
                   {
                       const std::size_t i0 = c * kChunk, i1 = std::min(pts.size, i0 + kChunk);
-                      chunks[c] = quantizeChunk(T, grid.geometry(), pts, i0, i1, chunk_out);
+                      chunks[c] = quantizeChunk(T, grid.geometry(), grid.params().min_range, pts,
+                                                i0, i1, chunk_out);
                   }
               });
     int32_t m_min = std::numeric_limits<int32_t>::max(),
             m_max = std::numeric_limits<int32_t>::min();
     int32_t n_min = m_min, n_max = m_max;
-    std::size_t v = 0, valid = 0;
+    std::size_t v = 0, valid = 0, near = 0;
     for (std::size_t c = 0; c < n_chunks; ++c)
     {
         const ChunkSummary& ch = chunks[c];
@@ -65,6 +66,7 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
         }
         v += ch.kept;
         valid += ch.valid;
+        near += ch.near;
         m_min = std::min(m_min, ch.m_min);
         m_max = std::max(m_max, ch.m_max);
         n_min = std::min(n_min, ch.n_min);
@@ -72,7 +74,8 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
         out.top_slope_sq = std::max(out.top_slope_sq, ch.top_slope_sq);
     }
     out.points_valid = valid;
-    out.points_invalid = pts.size - valid;
+    out.points_near = near;
+    out.points_invalid = pts.size - valid - near;
     out.keys.clear();
     out.offsets.clear();
     out.cells.resize(v);

@@ -6,12 +6,27 @@
 #include <atomic>
 #include <cmath>
 
+#include "FreeSpace.h"
 #include "GridAccess.h"
 
 namespace hif
 {
 ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& is_dynamic,
                                    const Eigen::Isometry3d& T) const
+{
+    return classifyImpl(pts, is_dynamic, T, nullptr, std::nullopt);
+}
+
+ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& is_dynamic,
+                                   const Eigen::Isometry3d& T, const ScanWindow& window,
+                                   std::optional<std::size_t> self) const
+{
+    return classifyImpl(pts, is_dynamic, T, &window, self);
+}
+
+ClassifyStats PillarGrid::classifyImpl(const PointsView& pts, std::vector<uint8_t>& is_dynamic,
+                                       const Eigen::Isometry3d& T, const ScanWindow* window,
+                                       std::optional<std::size_t> self) const
 {
     // Reused by later calls on this thread. Worker threads must use this thread's object, so
     // the lambda below captures a reference, never the thread_local name.
@@ -48,6 +63,12 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
                       });
     ClassifyStats st;
     st.static_points = n_static;
+    if (window && params_.free_space_window > 0)
+    {
+        st.seen_through_points =
+            detail::markSeenThrough(*this, scan, pts, T, *window, self, is_dynamic);
+        st.static_points -= st.seen_through_points;
+    }
     // A repeat has the pillar and height cell of the point before it, hence its class.
     for (std::size_t i = 1; i < pts.size; ++i)
         if (scan.repeats[i])
@@ -55,19 +76,25 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
             is_dynamic[i] = is_dynamic[i - 1];
             st.static_points += is_dynamic[i] == 0;
         }
-    // Points that bucketPoints() skipped: non-finite ones are invalid (dynamic); finite ones
-    // beyond the int32 index range lie in unknown space, which has the prior.
-    if (scan.points_invalid > 0)
+    // Points that bucketPoints() skipped: non-finite ones are invalid (dynamic), those nearer
+    // than the minimum range dynamic; finite ones beyond the int32 index range lie in unknown
+    // space, which has the prior.
+    if (scan.points_invalid > 0 || scan.points_near > 0)
+    {
+        const double min_r2 = params_.min_range * params_.min_range;
         for (std::size_t i = 0; i < pts.size; ++i)
         {
             if (is_dynamic[i] != kUnset) continue;
-            const bool finite =
-                std::isfinite(pts.x[i]) && std::isfinite(pts.y[i]) && std::isfinite(pts.z[i]);
+            const double x = pts.x[i], y = pts.y[i], z = pts.z[i];
+            const bool finite = std::isfinite(x) && std::isfinite(y) && std::isfinite(z);
+            const bool near = finite && x * x + y * y + z * z < min_r2;
             st.invalid_points += !finite;
-            const bool stat = finite && prior_static;
+            st.near_points += near;
+            const bool stat = finite && !near && prior_static;
             is_dynamic[i] = stat ? 0 : 1;
             st.static_points += stat;
         }
+    }
     st.dynamic_points = pts.size - st.static_points;
     return st;
 }

@@ -31,6 +31,7 @@ struct PassState
     double top = -std::numeric_limits<double>::infinity();  ///< largest z |z| / r^2
     std::size_t v = 0;                                      ///< next output slot
     std::size_t valid = 0;
+    std::size_t near = 0;    ///< finite points nearer the sensor than the minimum range
     bool have_prev = false;  ///< the input point before the next one is valid
     int32_t prev_m = 0, prev_n = 0, prev_z = 0;
 };
@@ -65,8 +66,10 @@ struct QuantizeChunk
     double r00, r01, r02, r10, r11, r12, r20, r21, r22;
     double tx, ty, tz;
     double ox, oy, inv_xy, inv_z;
+    double min_range2;  ///< squared minimum range (0: none)
 
-    QuantizeChunk(const Eigen::Matrix3d& R, const Eigen::Vector3d& t, const GridGeometry& p)
+    QuantizeChunk(const Eigen::Matrix3d& R, const Eigen::Vector3d& t, const GridGeometry& p,
+                  double min_range)
         : r00(R(0, 0)),
           r01(R(0, 1)),
           r02(R(0, 2)),
@@ -82,7 +85,8 @@ struct QuantizeChunk
           ox(p.origin_x),
           oy(p.origin_y),
           inv_xy(1.0 / p.pillar_size),
-          inv_z(1.0 / p.height_resolution)
+          inv_z(1.0 / p.height_resolution),
+          min_range2(min_range * min_range)
     {
     }
 
@@ -103,6 +107,12 @@ struct QuantizeChunk
             int32_t m = 0, n = 0, zc = 0;
             if (!floorToInt32(fm, m) || !floorToInt32(fn, n) || !floorToInt32(fz, zc))
             {
+                st.have_prev = false;
+                continue;
+            }
+            if (sx * sx + sy * sy + sz * sz < min_range2)
+            {
+                ++st.near;
                 st.have_prev = false;
                 continue;
             }
@@ -161,7 +171,8 @@ struct QuantizeChunk
         __m128i prev_m = _mm_set1_epi32(st.prev_m), prev_n = _mm_set1_epi32(st.prev_n),
                 prev_z = _mm_set1_epi32(st.prev_z);
         unsigned prev_ok = st.have_prev ? 1u : 0u;
-        std::size_t v = st.v, valid = 0, j = i0;
+        const __m256d vmin_range2 = _mm256_set1_pd(min_range2);
+        std::size_t v = st.v, valid = 0, near = 0, j = i0;
         for (; j + 4 <= i1; j += 4)
         {
             const __m256d sx = _mm256_cvtps_pd(_mm_loadu_ps(pts.x + j));
@@ -183,13 +194,21 @@ struct QuantizeChunk
             const __m256d fm = _mm256_mul_pd(_mm256_sub_pd(wx, vox), vinv_xy);
             const __m256d fn = _mm256_mul_pd(_mm256_sub_pd(wy, voy), vinv_xy);
             const __m256d fz = _mm256_mul_pd(wz, vinv_z);
-            const __m256d okm =
+            const __m256d in_range =
                 _mm256_and_pd(_mm256_and_pd(_mm256_and_pd(_mm256_cmp_pd(fm, lo, _CMP_GE_OQ),
                                                           _mm256_cmp_pd(fm, hi, _CMP_LT_OQ)),
                                             _mm256_and_pd(_mm256_cmp_pd(fn, lo, _CMP_GE_OQ),
                                                           _mm256_cmp_pd(fn, hi, _CMP_LT_OQ))),
                               _mm256_and_pd(_mm256_cmp_pd(fz, lo, _CMP_GE_OQ),
                                             _mm256_cmp_pd(fz, hi, _CMP_LT_OQ)));
+            // Points nearer than the minimum range are dropped (never, when it is 0).
+            const __m256d r2s = _mm256_add_pd(
+                _mm256_add_pd(_mm256_mul_pd(sx, sx), _mm256_mul_pd(sy, sy)), _mm256_mul_pd(sz, sz));
+            const __m256d nearm =
+                _mm256_and_pd(in_range, _mm256_cmp_pd(r2s, vmin_range2, _CMP_LT_OQ));
+            const __m256d okm = _mm256_andnot_pd(nearm, in_range);
+            near += static_cast<std::size_t>(
+                __builtin_popcount(static_cast<unsigned>(_mm256_movemask_pd(nearm))));
             // Invalid lanes become 0 before the conversion.
             const __m128i m = _mm256_cvttpd_epi32(_mm256_floor_pd(_mm256_and_pd(fm, okm)));
             const __m128i n = _mm256_cvttpd_epi32(_mm256_floor_pd(_mm256_and_pd(fn, okm)));
@@ -261,6 +280,7 @@ struct QuantizeChunk
         }
         st.v = v;
         st.valid += valid;
+        st.near += near;
         st.have_prev = prev_ok != 0;
         st.prev_m = _mm_extract_epi32(prev_m, 3);
         st.prev_n = _mm_extract_epi32(prev_n, 3);
@@ -283,6 +303,7 @@ struct QuantizeChunk
         runScalar<kKeepIndex>(pts, i, i1, m_out, n_out, z_out, src_out, repeats, st);
         ChunkSummary ch;
         ch.valid = st.valid;
+        ch.near = st.near;
         ch.kept = st.v - i0;
         ch.top_slope_sq = st.top;
         // floor() is monotone, so these are the extremes of the valid points' indices (and
@@ -300,10 +321,10 @@ struct QuantizeChunk
 }  // namespace
 
 ChunkSummary quantizeChunk(const Eigen::Isometry3d& T, const GridGeometry& geometry,
-                           const PointsView& pts, std::size_t i0, std::size_t i1,
+                           double min_range, const PointsView& pts, std::size_t i0, std::size_t i1,
                            const ChunkOutput& out)
 {
-    const QuantizeChunk quant{T.linear(), T.translation(), geometry};
+    const QuantizeChunk quant{T.linear(), T.translation(), geometry, min_range};
     return out.src ? quant.run<true>(pts, i0, i1, out.m, out.n, out.z, out.src, out.repeats)
                    : quant.run<false>(pts, i0, i1, out.m, out.n, out.z, nullptr, nullptr);
 }

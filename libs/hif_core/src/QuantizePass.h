@@ -21,6 +21,7 @@ struct ChunkSummary
 {
     std::size_t valid = 0;  ///< valid points, repeats included
     std::size_t kept = 0;   ///< valid points that are not repeats
+    std::size_t near = 0;   ///< finite points nearer the sensor than the minimum range
     int32_t m_min = std::numeric_limits<int32_t>::max();
     int32_t m_max = std::numeric_limits<int32_t>::min();
     int32_t n_min = std::numeric_limits<int32_t>::max();
@@ -43,11 +44,12 @@ struct ChunkOutput
 /** Pass 1 over input points [i0, i1): transform by `sensor_to_world`, quantize (Eq. 1, as
  *  quantize() without std::optional) and write the valid points that are not repeats to
  *  out.m/n/z[i0...] (and their input index to out.src), with their bounding box and the top
- *  beam's elevation. Four points at a time with AVX when useAvx() (the same operations in the
+ *  beam's elevation. Points nearer the sensor than `min_range` are dropped (counted in
+ *  `near`). Four points at a time with AVX when useAvx() (the same operations in the
  *  same order, without fused multiply-add, so the same bits), one at a time otherwise and for
  *  the last 1-3 points of a chunk. */
 ChunkSummary quantizeChunk(const Eigen::Isometry3d& sensor_to_world, const GridGeometry& geometry,
-                           const PointsView& pts, std::size_t i0, std::size_t i1,
+                           double min_range, const PointsView& pts, std::size_t i0, std::size_t i1,
                            const ChunkOutput& out);
 
 }  // namespace hif::detail

@@ -47,6 +47,8 @@ void CHeightIntervalMap::internal_clear()
 {
     grid_.clear();
     last_insert_ = {};
+    window_.clear();
+    last_obs_ = nullptr;
 }
 
 bool CHeightIntervalMap::internal_insertObservation(
@@ -56,7 +58,20 @@ bool CHeightIntervalMap::internal_insertObservation(
     if (!mrpt_adapter::sensorPoints(obs, sp) || sp.view.size == 0) return false;
     applyOptions();
     const mrpt::poses::CPose3D robot = robotPose ? *robotPose : mrpt::poses::CPose3D();
-    last_insert_ = grid_.insertScan(sp.view, mrpt_adapter::toIsometry(robot + sp.sensor_pose));
+    const Eigen::Isometry3d T = mrpt_adapter::toIsometry(robot + sp.sensor_pose);
+    last_insert_ = grid_.insertScan(sp.view, T);
+    const std::size_t keep = insertionOptions.online_window ? params().free_space_window : 0;
+    if (keep > 0)
+    {
+        // The scan and the `keep` before it: the evidence for classifying it, or a newer one.
+        window_.add(scans_inserted_, sp.view, T);
+        window_.dropBefore(scans_inserted_ >= keep ? scans_inserted_ - keep : 0);
+        last_obs_ = &obs;
+        last_stamp_ = obs.timestamp;
+    }
+    else
+        window_.clear();
+    ++scans_inserted_;
     return last_insert_.points_used > 0;
 }
 
@@ -105,12 +120,37 @@ ClassifyStats CHeightIntervalMap::classify(const mrpt::obs::CObservation& obs,
                                            const mrpt::poses::CPose3D& robotPose,
                                            std::vector<uint8_t>& isDynamic) const
 {
+    if (window_.empty() || params().free_space_window == 0)
+        return classify(obs, robotPose, isDynamic, window_, std::nullopt);
+    // The observation inserted last is in the window: it is not evidence about itself.
+    const bool last = &obs == last_obs_ && obs.timestamp == last_stamp_;
+    return classify(obs, robotPose, isDynamic, window_,
+                    last ? std::optional<std::size_t>(window_.lastId()) : std::nullopt);
+}
+
+ClassifyStats CHeightIntervalMap::classify(const mrpt::obs::CObservation& obs,
+                                           const mrpt::poses::CPose3D& robotPose,
+                                           std::vector<uint8_t>& isDynamic,
+                                           const ScanWindow& window,
+                                           std::optional<std::size_t> self) const
+{
     SensorPoints sp;
     if (!mrpt_adapter::sensorPoints(obs, sp))
         throw std::invalid_argument(std::string("hif::CHeightIntervalMap::classify: cannot read "
                                                 "points from a ") +
                                     obs.GetRuntimeClass()->className);
-    return grid_.classify(sp.view, isDynamic, mrpt_adapter::toIsometry(robotPose + sp.sensor_pose));
+    return grid_.classify(sp.view, isDynamic, mrpt_adapter::toIsometry(robotPose + sp.sensor_pose),
+                          window, self);
+}
+
+bool CHeightIntervalMap::addToWindow(ScanWindow& window, std::size_t id,
+                                     const mrpt::obs::CObservation& obs,
+                                     const mrpt::poses::CPose3D& robotPose)
+{
+    SensorPoints sp;
+    if (!mrpt_adapter::sensorPoints(obs, sp)) return false;
+    window.add(id, sp.view, mrpt_adapter::toIsometry(robotPose + sp.sensor_pose));
+    return true;
 }
 
 bool CHeightIntervalMap::internal_canComputeObservationLikelihood(

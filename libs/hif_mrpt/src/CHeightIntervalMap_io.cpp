@@ -18,8 +18,9 @@ IMPLEMENTS_SERIALIZABLE(CHeightIntervalMap, CMetricMap, hif)
 
 namespace
 {
-/** Version 1 added the see-through options (Field::since_version); version 0 is still read. */
-constexpr uint8_t kSerializationVersion = 1;
+/** Version 1 added the see-through options, version 2 the free-space test and the minimum
+ *  range (Field::since_version); every older version is still read. */
+constexpr uint8_t kSerializationVersion = 2;
 }  // namespace
 
 void CHeightIntervalMap::TInsertionOptions::writeToStream(mrpt::serialization::CArchive& out) const

@@ -78,6 +78,7 @@ void CHeightIntervalMap::TInsertionOptions::loadFromConfigFile(
 {
     loadFields<Params>(*this, c, s);
     threads = c.read_uint64_t(s, "threads", threads);
+    online_window = c.read_bool(s, "online_window", online_window);
     if (threads == 0) throw std::invalid_argument("[" + s + "] threads = 0: must be >= 1");
     // Validate now, so that a bad value is reported with the section it came from.
     validateIn(s, [&] { Params::validate(); });
@@ -89,6 +90,8 @@ void CHeightIntervalMap::TInsertionOptions::saveToConfigFile(mrpt::config::CConf
     saveFields<Params>(*this, c, s);
     c.write(s, "threads", threads, -1, -1,
             "Threads for insertion and classification (same map for any count)");
+    c.write(s, "online_window", online_window, -1, -1,
+            "Keep the last scans for the free-space test of classify() after insertion");
 }
 
 CHeightIntervalMap::TMapDefinition::TMapDefinition() = default;
@@ -105,7 +108,8 @@ void CHeightIntervalMap::TMapDefinition::loadFromConfigFile_map_specific(
 
 void CHeightIntervalMap::TMapDefinition::dumpToTextStream_map_specific(std::ostream& out) const
 {
-    forEachField<GridGeometry>([&](const Field<GridGeometry>& f, auto member)
-                               { dumpVar_double(out, f.name, geometry.*member); });
+    forEachField<GridGeometry>(
+        [&](const Field<GridGeometry>& f, auto member)
+        { dumpVar_double(out, f.name, static_cast<double>(geometry.*member)); });
     insertionOpts.dumpToTextStream(out);
 }

@@ -80,6 +80,40 @@ struct Params
      *  it; returns within it of the pillar veto the miss. */
     double see_through_margin = 2.5;
 
+    /** Free-space test (ours; 0 = off, the paper): how many scans on each side of a scan
+     *  (offline; online: before it) may show that its points were not there. A point was not
+     *  there at the time of another scan when that scan's beam toward it, from nearly the same
+     *  direction (free_space_max_parallax_deg), returned clearly beyond it and no beam around
+     *  it returned near it; what counts is only a scan outside the span of scans that saw the
+     *  point occupied. A pillar's points of one scan are removed when, above the pillar's
+     *  lowest return (free_space_clearance) and spanning free_space_min_extent in height, at
+     *  least free_space_fraction of them were not there at other times: something that
+     *  walked through. Needs the scans' range images (ScanWindow); see doc/algorithm.md. */
+    std::size_t free_space_window = 0;
+    /** Points farther than this from their sensor are not tested, metres. */
+    double free_space_range = 40.0;
+    /** A return counts as near a point (it vetoes, or marks the point occupied) within this
+     *  many metres plus free_space_margin_per_m times the point's range; beyond, as clearly
+     *  behind it. */
+    double free_space_margin = 0.3;
+    double free_space_margin_per_m = 0.02;
+    /** Points of a scan less than this above the lowest return of their pillar are ground
+     *  (not tested; removed with the rest of the pillar only from half of it up), metres. */
+    double free_space_clearance = 0.1;
+    /** A pillar's tested points must span at least this in height: an object, not ground
+     *  texture, metres. */
+    double free_space_min_extent = 0.5;
+    /** Share of a pillar's tested points that must be shown gone for it to be removed. */
+    double free_space_fraction = 0.5;
+    /** Only scans that see a point within this angle of the direction it was seen from give
+     *  evidence, degrees: from far off the original view, a beam grazes surfaces and passes
+     *  through foliage and fences beside the point. */
+    double free_space_max_parallax_deg = 10.0;
+
+    /** Minimum range (ours; 0 = off, the paper): points nearer their sensor than this,
+     *  metres, are not inserted and are reported dynamic (the vehicle's own returns). */
+    double min_range = 0.0;
+
     /** A point is static when the interval it falls in has P(static) >= this. */
     double static_threshold = 0.5;
 
@@ -88,7 +122,7 @@ struct Params
     std::size_t max_intervals_per_pillar = 16;
 
     /** The fields, for loops over them (see FieldTable.h). */
-    [[nodiscard]] static const std::array<Field<Params>, 15>& fields();
+    [[nodiscard]] static const std::array<Field<Params>, 24>& fields();
 
     /** The paper's method as written: the additions above (HHP, the unseen-height prior,
      *  range-adaptive intervals; see-through misses are off by default) off. */
@@ -105,10 +139,10 @@ struct Params
     friend bool operator!=(const Params& a, const Params& b) { return !(a == b); }
 };
 
-inline const std::array<Field<Params>, 15>& Params::fields()
+inline const std::array<Field<Params>, 24>& Params::fields()
 {
     using P = Params;
-    static const std::array<Field<P>, 15> table{{
+    static const std::array<Field<P>, 24> table{{
         {"merge_gap", &P::merge_gap, Bounds::atLeast(0), 0,
          "Max gap between heights of one interval [m]"},
         {"interval_padding", &P::interval_padding, Bounds::atLeast(0), 0,
@@ -130,6 +164,25 @@ inline const std::array<Field<Params>, 15>& Params::fields()
          "See-through misses within this distance [m], 0 = off (not in the paper)"},
         {"see_through_margin", &P::see_through_margin, Bounds::atLeast(0), 1,
          "A return this far beyond a pillar passed through it [m]"},
+        {"free_space_window", &P::free_space_window, Bounds::closed(0, 50), 2,
+         "Free-space test: scans on each side that may show a point was not there, 0 = off "
+         "(not in the paper)"},
+        {"free_space_range", &P::free_space_range, Bounds::above(0), 2,
+         "Free-space test: points within this range are tested [m]"},
+        {"free_space_margin", &P::free_space_margin, Bounds::atLeast(0), 2,
+         "Free-space test: a return this near a point is at it [m] (plus the next per metre)"},
+        {"free_space_margin_per_m", &P::free_space_margin_per_m, Bounds::closedOpen(0, 1), 2,
+         "Free-space test: margin added per metre of range"},
+        {"free_space_clearance", &P::free_space_clearance, Bounds::atLeast(0), 2,
+         "Free-space test: points this far above their pillar's lowest return are tested [m]"},
+        {"free_space_min_extent", &P::free_space_min_extent, Bounds::atLeast(0), 2,
+         "Free-space test: a pillar's tested points span at least this height [m]"},
+        {"free_space_fraction", &P::free_space_fraction, Bounds::open(0, 1), 2,
+         "Free-space test: share of a pillar's tested points shown gone to remove it"},
+        {"free_space_max_parallax_deg", &P::free_space_max_parallax_deg, Bounds::closed(0, 180), 2,
+         "Free-space test: evidence only from views within this angle [deg]"},
+        {"min_range", &P::min_range, Bounds::closedOpen(0, 100), 2,
+         "Points nearer the sensor are not inserted and are dynamic [m], 0 = off"},
         {"static_threshold", &P::static_threshold, Bounds::open(0, 1), 0,
          "Static when P(static) >= this"},
         {"max_intervals_per_pillar", &P::max_intervals_per_pillar, Bounds::atLeast(1), 0,

@@ -20,6 +20,7 @@
 #include "hif/Params.h"
 #include "hif/Pillar.h"
 #include "hif/PillarIndex.h"
+#include "hif/ScanWindow.h"
 
 namespace hif
 {
@@ -38,6 +39,7 @@ struct InsertStats
 {
     std::size_t points_used = 0;      ///< points that updated the map
     std::size_t points_invalid = 0;   ///< non-finite, or outside the int32 index range: skipped
+    std::size_t points_near = 0;      ///< nearer the sensor than Params::min_range: skipped
     std::size_t pillars_updated = 0;  ///< existing pillars matched by the scan
     std::size_t pillars_created = 0;  ///< pillars seen for the first time
 };
@@ -48,6 +50,9 @@ struct ClassifyStats
     std::size_t static_points = 0;
     std::size_t dynamic_points = 0;
     std::size_t invalid_points = 0;  ///< non-finite: reported dynamic (not part of the map)
+    std::size_t near_points = 0;     ///< nearer the sensor than Params::min_range: dynamic
+    /** Points of the map's static intervals that the free-space test showed gone. */
+    std::size_t seen_through_points = 0;
 };
 
 namespace detail
@@ -102,6 +107,16 @@ public:
     ClassifyStats classify(
         const PointsView& points, std::vector<uint8_t>& is_dynamic,
         const Eigen::Isometry3d& sensor_to_world = Eigen::Isometry3d::Identity()) const;
+
+    /** classify(), then the free-space test when Params::free_space_window > 0: of the points
+     *  it found static, those of a pillar that other scans of `window` showed gone are dynamic
+     *  too (see Params::free_space_window). `self` is the window id of the scan classified, if
+     *  the window holds it (offline: the scans around it): it is no evidence about itself, and
+     *  only scans within free_space_window of it count. Without `self`, the scan is taken to
+     *  be newer than the whole window (online), and every scan of it counts. */
+    ClassifyStats classify(const PointsView& points, std::vector<uint8_t>& is_dynamic,
+                           const Eigen::Isometry3d& sensor_to_world, const ScanWindow& window,
+                           std::optional<std::size_t> self) const;
     /** @} */
 
     /** @name Point queries (world frame)
@@ -163,6 +178,9 @@ private:
     std::shared_ptr<detail::ThreadArena> arena_;  ///< null when threads_ == 1
     detail::WorkspaceHandle workspace_;
 
+    ClassifyStats classifyImpl(const PointsView& points, std::vector<uint8_t>& is_dynamic,
+                               const Eigen::Isometry3d& sensor_to_world, const ScanWindow* window,
+                               std::optional<std::size_t> self) const;
     /** Log-odds of P(static) at a world point (logit(p_empty_init) where nothing is known). */
     [[nodiscard]] double logOddsAt(double x, double y, double z) const;
 };

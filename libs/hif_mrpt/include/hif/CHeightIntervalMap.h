@@ -63,11 +63,23 @@ public:
                            std::vector<uint8_t>& isDynamic) const;
     /** Classifies the points of an observation taken at `robotPose`, placed in the world
      *  exactly as insertObservation() places them (robotPose (+) sensor pose): isDynamic[i] =
-     *  1 unless point i is static, in the observation's point order. Throws
+     *  1 unless point i is static, in the observation's point order. With the free-space test
+     *  on (free_space_window > 0), the map's own window of the last scans inserted is its
+     *  evidence (online use: the observation just inserted, or a newer one). Throws
      *  std::invalid_argument for an observation type the map cannot insert. */
     ClassifyStats classify(const mrpt::obs::CObservation& obs,
                            const mrpt::poses::CPose3D& robotPose,
                            std::vector<uint8_t>& isDynamic) const;
+    /** classify(), with the free-space test against `window` instead of the map's own:
+     *  offline, the scans on both sides of the one classified, whose window id is `self`
+     *  (see PillarGrid::classify()). */
+    ClassifyStats classify(const mrpt::obs::CObservation& obs,
+                           const mrpt::poses::CPose3D& robotPose, std::vector<uint8_t>& isDynamic,
+                           const ScanWindow& window, std::optional<std::size_t> self) const;
+    /** Adds an observation taken at `robotPose` to `window` as scan `id`. Returns false for an
+     *  observation type the map cannot insert. */
+    static bool addToWindow(ScanWindow& window, std::size_t id, const mrpt::obs::CObservation& obs,
+                            const mrpt::poses::CPose3D& robotPose);
 
     [[nodiscard]] std::size_t pillarCount() const { return grid_.pillarCount(); }
     [[nodiscard]] std::size_t intervalCount() const { return grid_.intervalCount(); }
@@ -105,6 +117,11 @@ public:
          *  property of the machine, not of the map: read from and written to .ini files but
          *  not serialized with the map (Default: 1) */
         uint64_t threads = 1;
+        /** With the free-space test on, keep the range images of the last free_space_window
+         *  scans inserted, for classify() right after an insertion (online use). An offline
+         *  caller that keeps its own ScanWindow (hif-clean) turns it off and saves their cost.
+         *  Like `threads`, not serialized (Default: true) */
+        bool online_window = true;
 
         /** Loads every field; throws std::invalid_argument if the result is invalid, naming
          *  the section and the field. */
@@ -150,6 +167,12 @@ public:
 private:
     PillarGrid grid_;
     InsertStats last_insert_;
+    /** Online free-space test: the last free_space_window scans inserted, and the last one
+     *  (not serialized; empty after loading or clear()). */
+    ScanWindow window_;
+    std::size_t scans_inserted_ = 0;
+    const mrpt::obs::CObservation* last_obs_ = nullptr;  ///< compared, never dereferenced
+    mrpt::Clock::time_point last_stamp_;
 
     void internal_clear() override;
     bool internal_insertObservation(

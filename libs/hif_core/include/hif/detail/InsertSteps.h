@@ -52,6 +52,7 @@ struct ScanBuckets
     double top_slope_sq = -std::numeric_limits<double>::infinity();
     std::size_t points_valid = 0;    ///< valid input points, repeats included
     std::size_t points_invalid = 0;  ///< non-finite, or outside the int32 index range
+    std::size_t points_near = 0;     ///< nearer the sensor than Params::min_range
 
     [[nodiscard]] std::size_t pillarCount() const { return keys.size(); }
     [[nodiscard]] std::size_t entryCount() const { return cells.size(); }

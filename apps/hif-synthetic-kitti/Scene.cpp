@@ -1,0 +1,219 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   Scene.cpp
+ * @brief  Ray casting against boxes, vertical cylinders and spheres; the scenes.
+ */
+#include "Scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace synth
+{
+namespace
+{
+void hitBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Box& b, uint32_t label,
+            Hit& h)
+{
+    double t0 = 0, t1 = h.t;
+    for (int k = 0; k < 3; ++k)
+    {
+        const double inv = 1.0 / d[k];
+        double a = (b.lo[k] - o[k]) * inv, c = (b.hi[k] - o[k]) * inv;
+        if (a > c) std::swap(a, c);
+        t0 = std::max(t0, a);
+        t1 = std::min(t1, c);
+        if (t0 > t1) return;
+    }
+    if (t0 > 1e-6 && t0 < h.t) h = {t0, label};
+}
+
+void hitCylinder(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Cylinder& c, Hit& h)
+{
+    const double ox = o.x() - c.cx, oy = o.y() - c.cy;
+    const double a = d.x() * d.x() + d.y() * d.y();
+    const double b = 2 * (ox * d.x() + oy * d.y());
+    const double cc = ox * ox + oy * oy - c.r * c.r;
+    const double disc = b * b - 4 * a * cc;
+    if (a < 1e-12 || disc < 0) return;
+    const double t = (-b - std::sqrt(disc)) / (2 * a);
+    const double z = o.z() + t * d.z();
+    if (t > 1e-6 && t < h.t && z >= c.z0 && z <= c.z1) h = {t, c.label};
+}
+
+void hitSphere(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Sphere& s, Hit& h)
+{
+    const Eigen::Vector3d oc = o - s.c;
+    const double b = oc.dot(d);
+    const double disc = b * b - (oc.squaredNorm() - s.r * s.r);
+    if (disc < 0) return;
+    const double t = -b - std::sqrt(disc);
+    if (t > 1e-6 && t < h.t) h = {t, s.label};
+}
+
+/** Buildings, trees and parked cars on both sides of the street, from -30 to length + 30. */
+void addStreet(Scene& s, std::mt19937& rng, double length)
+{
+    std::uniform_real_distribution<double> u(0, 1);
+    // Buildings on both sides, with gaps between them.
+    for (int side : {-1, 1})
+        for (double x = -30; x < length + 30;)
+        {
+            const double w = 10 + 15 * u(rng), h = 6 + 10 * u(rng), y0 = 13 + 3 * u(rng);
+            const double y_near = side * y0, y_far = side * (y0 + 10);
+            s.boxes.push_back({Eigen::Vector3d(x, std::min(y_near, y_far), groundZ(x) - 1),
+                               Eigen::Vector3d(x + w, std::max(y_near, y_far), groundZ(x) + h),
+                               kBuilding});
+            x += w + 3 + 6 * u(rng);
+        }
+    // Trees along both sidewalks: trunk and canopy.
+    for (int side : {-1, 1})
+        for (double x = -20 + 6 * u(rng); x < length + 20; x += 10 + 6 * u(rng))
+        {
+            const double y = side * (9.5 + u(rng)), gz = groundZ(x);
+            s.cylinders.push_back({x, y, 0.2, gz - 0.5, gz + 3.0, kTrunk});
+            s.spheres.push_back({Eigen::Vector3d(x, y, gz + 4.0), 1.5 + 0.5 * u(rng), kVegetation});
+        }
+    // Parked cars along both kerbs.
+    for (int side : {-1, 1})
+        for (double x = -10 + 8 * u(rng); x < length + 10; x += 9 + 12 * u(rng))
+        {
+            const double y = side * 6.0, gz = groundZ(x);
+            s.boxes.push_back({Eigen::Vector3d(x - 2.1, y - 0.9, gz + 0.15),
+                               Eigen::Vector3d(x + 2.1, y + 0.9, gz + 1.5), kCar});
+        }
+}
+}  // namespace
+
+void Mover::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t, Hit& h) const
+{
+    const Eigen::Vector3d c = start + velocity * t;
+    const double gz = groundZ(c.x());
+    if (!walker)
+    {
+        const Eigen::Vector3d half(size.x() / 2, size.y() / 2, 0);
+        hitBox(
+            o, d,
+            {Eigen::Vector3d(c.x() - half.x(), c.y() - half.y(), gz + 0.15 * (label == kMovingCar)),
+             Eigen::Vector3d(c.x() + half.x(), c.y() + half.y(), gz + size.z()), label},
+            label, h);
+        return;
+    }
+    // A person of height size.z(): legs 0.07 m thick up to 49 % of the height, swinging
+    // 0.25 m forward and back at a cadence that grows with speed; a torso 0.18 m in radius up
+    // to 84 %; a head.
+    const double speed = velocity.norm();
+    const Eigen::Vector3d u =
+        speed > 0 ? Eigen::Vector3d(velocity / speed) : Eigen::Vector3d::UnitX();
+    const Eigen::Vector3d v(-u.y(), u.x(), 0.0);
+    const double height = size.z();
+    const double swing =
+        0.25 * std::min(1.0, speed) * std::sin(2 * M_PI * (speed / 1.4) * t + phase);
+    for (int side : {-1, 1})
+    {
+        const Eigen::Vector3d leg = c + v * (0.1 * side) + u * (swing * side);
+        hitCylinder(o, d, {leg.x(), leg.y(), 0.07, gz, gz + 0.49 * height, label}, h);
+    }
+    hitCylinder(o, d, {c.x(), c.y(), 0.18, gz + 0.49 * height, gz + 0.84 * height, label}, h);
+    hitSphere(o, d, {Eigen::Vector3d(c.x(), c.y(), gz + 0.92 * height), 0.11, label}, h);
+}
+
+Hit Scene::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t_now, double max_range,
+                uint32_t& instance) const
+{
+    Hit h;
+    h.t = max_range;
+    const double denom = d.z() - kSlope * d.x();
+    if (std::abs(denom) > 1e-9)
+    {
+        const double t = (groundZ(o.x()) - o.z()) / denom;
+        if (t > 0 && t < h.t) h = {t, kRoad};
+    }
+    for (const Box& b : boxes) hitBox(o, d, b, b.label, h);
+    for (const Cylinder& c : cylinders) hitCylinder(o, d, c, h);
+    for (const Sphere& s : spheres) hitSphere(o, d, s, h);
+    instance = 0;
+    for (const Mover& m : movers)
+    {
+        const uint32_t before = h.label;
+        const double t_before = h.t;
+        m.cast(o, d, t_now, h);
+        if (h.t != t_before || h.label != before) instance = m.instance;
+    }
+    if (h.t >= max_range)
+        h.label = 0;
+    else if (instance != 0 && !(h.label == kMovingCar || h.label == kMovingPerson))
+        instance = 0;
+    return h;
+}
+
+Scene streetScene(std::mt19937& rng, double length)
+{
+    Scene s;
+    addStreet(s, rng, length);
+    // Moving cars: two overtake us in our direction, two come the other way; people walk
+    // along the sidewalks and one crosses the street.
+    uint32_t id = 1;
+    const Eigen::Vector3d car(4.4, 1.9, 1.5), person(0.6, 0.6, 1.75);
+    s.movers.push_back({{-15, -2.0, 0}, {13, 0, 0}, car, kMovingCar, id++});
+    s.movers.push_back({{10, -2.0, 0}, {11, 0, 0}, car, kMovingCar, id++});
+    s.movers.push_back({{length + 10, 2.0, 0}, {-10, 0, 0}, car, kMovingCar, id++});
+    s.movers.push_back({{length + 40, 2.2, 0}, {-12, 0, 0}, car, kMovingCar, id++});
+    s.movers.push_back({{12, -7.5, 0}, {1.4, 0, 0}, person, kMovingPerson, id++});
+    s.movers.push_back({{35, 7.5, 0}, {-1.3, 0, 0}, person, kMovingPerson, id++});
+    s.movers.push_back({{28, -4.0, 0}, {0, 1.2, 0}, person, kMovingPerson, id++});
+    return s;
+}
+
+Scene walkersScene(std::mt19937& rng, double length, double duration, int groups)
+{
+    Scene s;
+    addStreet(s, rng, length);
+    std::uniform_real_distribution<double> u(0, 1);
+    const double speeds[3] = {0.8, 1.2, 1.6};
+    const double t_mid = 0.5 * duration, x_mid = 0.5 * length;
+    uint32_t id = 1;
+    for (int g = 0; g < groups; ++g)
+    {
+        const double speed = speeds[std::min(2, static_cast<int>(3 * u(rng)))];
+        const bool across = u(rng) < 0.5;
+        const double sign = u(rng) < 0.5 ? -1.0 : 1.0;  // direction of walking
+        const double side = u(rng) < 0.5 ? -1.0 : 1.0;  // side of the street
+        // Where the group is at mid-clip: 8 to 25 m from the sensor, mostly ahead.
+        const double dist = 8.0 + 17.0 * u(rng);
+        Eigen::Vector3d mid, vel;
+        if (across)
+        {
+            const double y = side * 4.0 * u(rng);  // on the road
+            const double x =
+                x_mid + (u(rng) < 0.8 ? 1.0 : -1.0) * std::sqrt(std::max(1.0, dist * dist - y * y));
+            mid = Eigen::Vector3d(x, y, 0.0);
+            vel = Eigen::Vector3d(0.0, sign * speed, 0.0);
+        }
+        else
+        {
+            const double y = side * (7.2 + 1.2 * u(rng));  // sidewalk, by the parked cars
+            const double x =
+                x_mid + (u(rng) < 0.8 ? 1.0 : -1.0) * std::sqrt(std::max(1.0, dist * dist - y * y));
+            mid = Eigen::Vector3d(x, y, 0.0);
+            vel = Eigen::Vector3d(sign * speed, 0.0, 0.0);
+        }
+        const int members = u(rng) < 0.5 ? 1 : (u(rng) < 0.6 ? 2 : 3);
+        const Eigen::Vector3d beside(-vel.y() / speed, vel.x() / speed, 0.0);
+        for (int k = 0; k < members; ++k)
+        {
+            Mover m;
+            m.velocity = vel * (1.0 + 0.05 * (u(rng) - 0.5));
+            m.start = mid + beside * (0.7 * k) - m.velocity * t_mid;
+            m.size = Eigen::Vector3d(0.5, 0.5, 1.6 + 0.25 * u(rng));
+            m.label = kMovingPerson;
+            m.instance = id++;
+            m.walker = true;
+            m.phase = 2 * M_PI * u(rng);
+            s.movers.push_back(m);
+        }
+    }
+    return s;
+}
+
+}  // namespace synth

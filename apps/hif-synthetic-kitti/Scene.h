@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   Scene.h
+ * @brief  The synthetic world of hif-synthetic-kitti: a sloping street with buildings, trees and
+ *         parked cars, and things that move through it, ray-cast at any time.
+ */
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <vector>
+
+namespace synth
+{
+// SemanticKITTI classes used by the scenes.
+constexpr uint32_t kRoad = 40, kBuilding = 50, kVegetation = 70, kTrunk = 71, kCar = 10;
+constexpr uint32_t kMovingCar = 252, kMovingPerson = 254;
+
+constexpr double kSensorHeight = 1.73;  // metres above the ground, as on the KITTI car
+constexpr double kSlope = 0.02;         // the street climbs 2 cm per metre along x
+
+/** Ground height at x: the sensor's ground at x = 0 is z = -kSensorHeight. */
+inline double groundZ(double x) { return -kSensorHeight + kSlope * x; }
+
+struct Box
+{
+    Eigen::Vector3d lo, hi;
+    uint32_t label;
+};
+struct Cylinder  // vertical
+{
+    double cx, cy, r, z0, z1;
+    uint32_t label;
+};
+struct Sphere
+{
+    Eigen::Vector3d c;
+    double r;
+    uint32_t label;
+};
+
+struct Hit
+{
+    double t = std::numeric_limits<double>::infinity();
+    uint32_t label = 0;
+};
+
+/** Something that moves at a constant velocity: a box of `size` (cars; the street scene's
+ *  people), or a walking person: two legs that swing, a torso and a head. */
+struct Mover
+{
+    Eigen::Vector3d start;  ///< centre of the bottom face at t = 0
+    Eigen::Vector3d velocity;
+    Eigen::Vector3d size;
+    uint32_t label;
+    uint32_t instance;
+    bool walker = false;
+    double phase = 0.0;  ///< of the stride, radians
+
+    /** Updates `h` if the ray from o along unit d hits the mover at time t before h.t. */
+    void cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t, Hit& h) const;
+};
+
+struct Scene
+{
+    std::vector<Box> boxes;  ///< static
+    std::vector<Cylinder> cylinders;
+    std::vector<Sphere> spheres;
+    std::vector<Mover> movers;
+
+    /** First hit of the ray from o along unit d (within max_range) at time t, with the
+     *  instance id of the mover hit (0 for static things). Label 0: no return. */
+    Hit cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t, double max_range,
+             uint32_t& instance) const;
+};
+
+/** The street of the default scene, `length` metres long (plus margins): buildings, trees and
+ *  parked cars on both sides, four cars that drive and three people (boxes) that walk. */
+Scene streetScene(std::mt19937& rng, double length);
+
+/** The same street without cars that drive, and groups of walking people: `groups` groups of
+ *  1 to 3 people at 0.8, 1.2 or 1.6 m/s, along the sidewalks (beside parked cars and trees) or
+ *  across the road, 8 to 25 m from the sensor at mid-clip. The sensor moves along x from 0 to
+ *  `length`; `duration` is the clip's length in seconds. */
+Scene walkersScene(std::mt19937& rng, double length, double duration, int groups);
+
+}  // namespace synth

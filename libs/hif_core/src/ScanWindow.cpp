@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   ScanWindow.cpp
+ * @brief  The scans kept for the free-space test.
+ */
+#include "hif/ScanWindow.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "RangeImage.h"
+
+namespace hif
+{
+void ScanWindow::add(std::size_t id, const PointsView& points,
+                     const Eigen::Isometry3d& sensor_to_world)
+{
+    if (!scans_.empty() && id <= scans_.back().id)
+        throw std::invalid_argument("hif::ScanWindow::add: scan " + std::to_string(id) +
+                                    " after scan " + std::to_string(scans_.back().id) +
+                                    " (ids must increase)");
+    Scan s;
+    s.id = id;
+    s.sensor_to_world = sensor_to_world;
+    s.world_to_sensor_rotation = sensor_to_world.linear().transpose();
+    detail::buildRangeImage(points, scratch_);
+    if (!spare_.empty())
+    {
+        s.image = std::move(spare_.back());
+        spare_.pop_back();
+    }
+    s.image.resize(scratch_.size());
+    for (std::size_t k = 0; k < scratch_.size(); ++k)
+    {
+        const float r = scratch_[k];  // +inf where no return
+        s.image[k] = r < 655.34f ? static_cast<uint16_t>(r * 100.0f + 0.5f) : kNoReturn;
+    }
+    scans_.push_back(std::move(s));
+}
+
+void ScanWindow::dropBefore(std::size_t first)
+{
+    while (!scans_.empty() && scans_.front().id < first)
+    {
+        spare_.push_back(std::move(scans_.front().image));
+        scans_.pop_front();
+    }
+}
+
+std::size_t ScanWindow::memoryBytes() const
+{
+    std::size_t bytes = 0;
+    for (const Scan& s : scans_) bytes += sizeof(Scan) + s.image.capacity() * sizeof(uint16_t);
+    for (const auto& v : spare_) bytes += v.capacity() * sizeof(uint16_t);
+    return bytes + scratch_.capacity() * sizeof(float);
+}
+
+}  // namespace hif

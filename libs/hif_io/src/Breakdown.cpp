@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   Breakdown.cpp
+ * @brief  Scores by moving class and range band.
+ */
+#include "hif/io/Breakdown.h"
+
+#include <cmath>
+
+namespace hif::io
+{
+std::string movingClassName(uint32_t cls)
+{
+    static const char* const names[] = {
+        "moving-car",      "moving-bicyclist", "moving-person", "moving-motorcyclist",
+        "moving-on-rails", "moving-bus",       "moving-truck",  "moving-other-vehicle"};
+    if (cls >= 252 && cls <= 259) return names[cls - 252];
+    return "class " + std::to_string(cls);
+}
+
+std::string rangeBandName(std::size_t band)
+{
+    if (band + 1 >= kRangeBandStarts.size())
+        return std::to_string(static_cast<int>(kRangeBandStarts.back())) + "+";
+    return std::to_string(static_cast<int>(kRangeBandStarts[band])) + "-" +
+           std::to_string(static_cast<int>(kRangeBandStarts[band + 1]));
+}
+
+std::size_t rangeBand(double range)
+{
+    if (!(range >= 0.0)) return kRangeBandStarts.size();
+    std::size_t b = 0;
+    while (b + 1 < kRangeBandStarts.size() && range >= kRangeBandStarts[b + 1]) ++b;
+    return b;
+}
+
+void Breakdown::add(uint32_t truth, bool removed, double range)
+{
+    total.add(truth, removed);
+    if (isScored(truth) && isMovingClass(truth))
+        by_moving_class[truth & 0xffffu].add(truth, removed);
+    const std::size_t band = rangeBand(range);
+    if (band < by_range.size())
+    {
+        by_range[band].add(truth, removed);
+        has_ranges = true;
+    }
+}
+
+Breakdown& Breakdown::operator+=(const Breakdown& o)
+{
+    total += o.total;
+    for (const auto& [cls, s] : o.by_moving_class) by_moving_class[cls] += s;
+    for (std::size_t b = 0; b < by_range.size(); ++b) by_range[b] += o.by_range[b];
+    has_ranges = has_ranges || o.has_ranges;
+    return *this;
+}
+
+}  // namespace hif::io
