@@ -18,6 +18,7 @@
 
 #include "hif/CHeightIntervalMap.h"
 #include "hif/PillarGrid.h"
+#include "hif/ScanWindow.h"
 #include "hif/detail/InsertSteps.h"
 #include "hif/io/KittiSequence.h"
 
@@ -151,18 +152,25 @@ void BM_Insert(benchmark::State& state)
 }
 BENCHMARK(BM_Insert)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
-/** Insertion with the offline configuration, read from share/hif/config/kitti.ini (see-through
- *  misses, p_empty_init 0.42). The difference to BM_Insert is the cost of the see-through
- *  misses. Argument: threads. */
-void BM_InsertOfflineConfig(benchmark::State& state)
+/** The grid geometry and parameters of share/hif/config/kitti.ini, read through MRPT. */
+std::pair<hif::GridGeometry, hif::Params> offlineConfig()
 {
-    if (!haveScans(state)) return;
     mrpt::config::CConfigFile cfg(HIF_SHARE_DIR "/config/kitti.ini");
     mrpt::maps::TSetOfMetricMapInitializers inits;
     inits.loadFromConfigFile(cfg, "map");
     const mrpt::maps::CMultiMetricMap maps(inits);
     const auto map = maps.mapByClass<hif::CHeightIntervalMap>();
-    hif::PillarGrid g(map->geometry(), map->params());
+    return {map->geometry(), map->params()};
+}
+
+/** Insertion with the offline configuration, read from share/hif/config/kitti.ini (see-through
+ *  misses, p_empty_init 0.42; its free-space test is part of classification). The difference
+ *  to BM_Insert is the cost of the see-through misses. Argument: threads. */
+void BM_InsertOfflineConfig(benchmark::State& state)
+{
+    if (!haveScans(state)) return;
+    const auto [geometry, params] = offlineConfig();
+    hif::PillarGrid g(geometry, params);
     g.setThreads(static_cast<std::size_t>(state.range(0)));
     insertInSequence(state, g);
 }
@@ -275,6 +283,50 @@ void BM_Classify(benchmark::State& state)
     }
 }
 BENCHMARK(BM_Classify)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+/** Classification with the offline configuration (kitti.ini), as hif-clean does it: against
+ *  the map of all scans and, for the free-space test, a window of the free_space_window scans
+ *  on each side (built once here; hif-clean builds each scan's image once, as it reads it:
+ *  that is BM_WindowImage). */
+void BM_ClassifyOfflineConfig(benchmark::State& state)
+{
+    if (!haveScans(state)) return;
+    const auto [geometry, params] = offlineConfig();
+    hif::PillarGrid g(geometry, params);
+    hif::ScanWindow window;
+    for (std::size_t i = 0; i < scans().size(); ++i)
+    {
+        g.insertScan(scans().view(i), scans().poses[i]);
+        window.add(i, scans().view(i), scans().poses[i]);
+    }
+    std::vector<uint8_t> dyn;
+    std::size_t k = 0, seen_through = 0;
+    for (auto _ : state)
+    {
+        seen_through +=
+            g.classify(scans().view(k), dyn, scans().poses[k], window, k).seen_through_points;
+        k = (k + 1) % scans().size();
+    }
+    state.counters["seen_through/scan"] = double(seen_through) / double(state.iterations());
+}
+BENCHMARK(BM_ClassifyOfflineConfig)->Unit(benchmark::kMillisecond);
+
+/** One scan added to a ScanWindow (its range image built and stored), the window kept at 21
+ *  scans. */
+void BM_WindowImage(benchmark::State& state)
+{
+    if (!haveScans(state)) return;
+    hif::ScanWindow window;
+    std::size_t id = 0;
+    for (auto _ : state)
+    {
+        const std::size_t k = id % scans().size();
+        window.add(id, scans().view(k), scans().poses[k]);
+        window.dropBefore(id >= 20 ? id - 20 : 0);
+        ++id;
+    }
+}
+BENCHMARK(BM_WindowImage)->Unit(benchmark::kMillisecond);
 
 /** The offline run in memory: insert every scan, then classify every point. */
 void BM_OfflineRun(benchmark::State& state)

@@ -102,10 +102,14 @@ void imageCells(const float* x, const float* y, const float* z, std::size_t n, i
 }
 }  // namespace
 
-void buildRangeImage(const PointsView& pts, std::vector<float>& img)
+namespace
 {
-    img.assign(static_cast<std::size_t>(kImageCols) * kImageRows,
-               std::numeric_limits<float>::infinity());
+/** The nearest return of `pts` in every cell of `img` (kImageCols x kImageRows), each range
+ *  turned into a cell value by `value` (monotone); `none` where no return. */
+template <typename T, typename Value>
+void fillImage(const PointsView& pts, std::vector<T>& img, T none, Value value)
+{
+    img.assign(static_cast<std::size_t>(kImageCols) * kImageRows, none);
     constexpr std::size_t kBlock = 256;
     alignas(64) int32_t cells[kBlock];
     alignas(64) float ranges[kBlock];
@@ -116,10 +120,24 @@ void buildRangeImage(const PointsView& pts, std::vector<float>& img)
         for (std::size_t j = 0; j < nb; ++j)
             if (cells[j] >= 0)
             {
-                float& cell = img[static_cast<std::size_t>(cells[j])];
-                cell = std::min(cell, ranges[j]);
+                T& cell = img[static_cast<std::size_t>(cells[j])];
+                cell = std::min(cell, value(ranges[j]));
             }
     }
+}
+}  // namespace
+
+void buildRangeImage(const PointsView& pts, std::vector<float>& img)
+{
+    fillImage(pts, img, std::numeric_limits<float>::infinity(), [](float r) { return r; });
+}
+
+void buildRangeImageCm(const PointsView& pts, std::vector<uint16_t>& img)
+{
+    // Ranges from 655.34 m on read as "no return" (no LiDAR of interest reaches them).
+    fillImage(pts, img, kNoReturnCm,
+              [](float r)
+              { return r < 655.34f ? static_cast<uint16_t>(r * 100.0f + 0.5f) : kNoReturnCm; });
 }
 
 }  // namespace hif::detail

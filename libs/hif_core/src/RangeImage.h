@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "hif/PillarGrid.h"
@@ -45,5 +46,11 @@ inline int imageCell(double paz, double tan_el)
  *  (sensor frame) in every cell; +infinity where no return falls. Four points at a time with
  *  AVX when useAvx() (the same bits as one at a time). */
 void buildRangeImage(const PointsView& points, std::vector<float>& img);
+
+/** "No return" in a range image in centimetres. */
+constexpr uint16_t kNoReturnCm = 0xFFFF;
+
+/** buildRangeImage() in centimetres (rounded; kNoReturnCm where no return, or beyond 655 m). */
+void buildRangeImageCm(const PointsView& points, std::vector<uint16_t>& img);
 
 }  // namespace hif::detail

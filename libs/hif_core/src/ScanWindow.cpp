@@ -12,6 +12,8 @@
 
 namespace hif
 {
+static_assert(ScanWindow::kNoReturn == detail::kNoReturnCm);
+
 void ScanWindow::add(std::size_t id, const PointsView& points,
                      const Eigen::Isometry3d& sensor_to_world)
 {
@@ -23,18 +25,12 @@ void ScanWindow::add(std::size_t id, const PointsView& points,
     s.id = id;
     s.sensor_to_world = sensor_to_world;
     s.world_to_sensor_rotation = sensor_to_world.linear().transpose();
-    detail::buildRangeImage(points, scratch_);
     if (!spare_.empty())
     {
         s.image = std::move(spare_.back());
         spare_.pop_back();
     }
-    s.image.resize(scratch_.size());
-    for (std::size_t k = 0; k < scratch_.size(); ++k)
-    {
-        const float r = scratch_[k];  // +inf where no return
-        s.image[k] = r < 655.34f ? static_cast<uint16_t>(r * 100.0f + 0.5f) : kNoReturn;
-    }
+    detail::buildRangeImageCm(points, s.image);
     scans_.push_back(std::move(s));
 }
 
@@ -52,7 +48,7 @@ std::size_t ScanWindow::memoryBytes() const
     std::size_t bytes = 0;
     for (const Scan& s : scans_) bytes += sizeof(Scan) + s.image.capacity() * sizeof(uint16_t);
     for (const auto& v : spare_) bytes += v.capacity() * sizeof(uint16_t);
-    return bytes + scratch_.capacity() * sizeof(float);
+    return bytes;
 }
 
 }  // namespace hif
