@@ -30,18 +30,24 @@ namespace
 {
 const std::string kTag = "[hif-clean]";
 
-/** The shipped configuration for the mode and input (installed copy first, then the source
- *  tree's): kitti-online.ini online, dynamicmap.ini for a DynamicMap folder, else kitti.ini. */
+/** The shipped configuration for the mode and input: kitti-online.ini online, dynamicmap.ini
+ *  for a DynamicMap folder, else kitti.ini; from the installed share/hif/config beside this
+ *  program (any install prefix), else the source tree's (a build tree). */
 std::string defaultConfig(bool online, bool dynamicmap)
 {
     const std::string name =
         online ? "kitti-online.ini" : (dynamicmap ? "dynamicmap.ini" : "kitti.ini");
-    for (const std::string& dir :
-         {std::string(HIF_INSTALLED_SHARE_DIR), std::string(HIF_SOURCE_SHARE_DIR)})
-        if (fs::exists(dir + "/config/" + name)) return dir + "/config/" + name;
-    throw std::runtime_error("the default configuration " + name + " was not found in '" +
-                             std::string(HIF_INSTALLED_SHARE_DIR) + "/config' nor '" +
-                             std::string(HIF_SOURCE_SHARE_DIR) + "/config'; pass -c");
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    std::vector<fs::path> dirs;
+    if (!ec) dirs.push_back((exe.parent_path() / HIF_SHARE_FROM_BIN / "config").lexically_normal());
+    dirs.push_back(fs::path(HIF_SOURCE_SHARE_DIR) / "config");
+    for (const fs::path& dir : dirs)
+        if (fs::exists(dir / name)) return (dir / name).string();
+    std::string tried;
+    for (const fs::path& dir : dirs) tried += (tried.empty() ? "'" : ", '") + dir.string() + "'";
+    throw std::runtime_error("the default configuration " + name + " was not found in " + tried +
+                             "; pass -c");
 }
 
 struct Cli

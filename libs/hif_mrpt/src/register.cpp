@@ -8,6 +8,12 @@
 
 #include "hif/CHeightIntervalMap.h"
 
+namespace hif
+{
+/** Referenced by link_hif_mrpt.cpp in every program that links hif_mrpt (see there). */
+int linkHifMrpt() { return 1; }
+}  // namespace hif
+
 MRPT_INITIALIZER(register_hif_mrpt)
 {
     using namespace mrpt::rtti;
