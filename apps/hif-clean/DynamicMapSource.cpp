@@ -8,6 +8,7 @@
 #include <mrpt/obs/CObservationPointCloud.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <stdexcept>
 
@@ -40,7 +41,8 @@ public:
     bool next(Scan& out) override
     {
         if (pos_ >= files_.size()) return false;
-        const io::PcdCloud pcd = io::readPcd(files_[pos_++]);
+        const std::string& file = files_[pos_++];
+        const io::PcdCloud pcd = io::readPcd(file);
         // The benchmark's clouds are in the world frame; the map takes sensor-frame points and
         // the sensor pose (VIEWPOINT), so bring them back to the sensor frame.
         const Eigen::Isometry3d inv = pcd.viewpoint.inverse();
@@ -58,6 +60,12 @@ public:
         obs->pointcloud = cloud;
         out.obs = obs;
         out.robot_pose = mrpt::poses::CPose3D::FromHomogeneousMatrix(pcd.viewpoint.matrix());
+        // NNNNNN.pcd is scan NNNNNN of its sequence.
+        const std::string stem = fs::path(file).stem().string();
+        out.frame.reset();
+        if (!stem.empty() && stem.size() <= 8 &&
+            std::all_of(stem.begin(), stem.end(), [](unsigned char c) { return std::isdigit(c); }))
+            out.frame = static_cast<std::size_t>(std::stoul(stem));
         return true;
     }
 

@@ -32,7 +32,7 @@ void worldPoints(const hif::apps::Scan& scan, std::vector<float>& x, std::vector
 }
 }  // namespace
 
-Outputs::Outputs(const std::string& dir, std::size_t first_frame,
+Outputs::Outputs(const std::string& dir, std::optional<std::size_t> first_frame,
                  std::vector<std::string> static_files)
     : kept_cloud_(std::move(static_files)),
       removed_cloud_({dir + "/removed.ply", dir + "/removed.pcd"}),
@@ -66,7 +66,20 @@ void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::ap
             continue;  // counted as invalid, labelled moving, not written to a cloud
         (dyn[i] ? removed_cloud_ : kept_cloud_).add(x[i], y[i], z[i], intensity[i]);
     }
-    hif::io::writeLabels(pred_dir_ + "/" + hif::io::frameName(first_frame_ + k) + ".label", labels);
+    std::size_t frame = first_frame_.value_or(0) + k;
+    if (scan.frame)
+    {
+        if (k == 0 && first_frame_ && *first_frame_ != *scan.frame)
+            throw std::runtime_error("--first-frame " + std::to_string(*first_frame_) +
+                                     " disagrees with the input, whose first scan is frame " +
+                                     std::to_string(*scan.frame) + " (leave --first-frame out)");
+        frame = *scan.frame;
+    }
+    if (frame < written_.size() && written_[frame])
+        throw std::runtime_error("two scans of the input are frame " + std::to_string(frame));
+    if (frame >= written_.size()) written_.resize(frame + 1, false);
+    written_[frame] = true;
+    hif::io::writeLabels(pred_dir_ + "/" + hif::io::frameName(frame) + ".label", labels);
     write_ms_total += msSince(t1);
     points_in += dyn.size();
     points_kept += st.static_points;

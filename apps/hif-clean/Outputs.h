@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,8 +34,11 @@ struct Timings
 class Outputs
 {
 public:
-    /** `static_files` receive the kept points; removed.{ply,pcd} in `dir` the others. */
-    Outputs(const std::string& dir, std::size_t first_frame, std::vector<std::string> static_files);
+    /** `static_files` receive the kept points; removed.{ply,pcd} in `dir` the others.
+     *  Predictions are named after each scan's frame number when the input gives it (then
+     *  `first_frame`, if given, must be the first scan's), else `first_frame` (default 0) + k. */
+    Outputs(const std::string& dir, std::optional<std::size_t> first_frame,
+            std::vector<std::string> static_files);
 
     /** Classifies scan number `k` against `map` and writes its points and predictions. With
      *  `window` (offline), the free-space test uses it, the scan being its scan `k`; without,
@@ -52,6 +56,7 @@ public:
 private:
     hif::io::CloudWriter kept_cloud_, removed_cloud_;
     std::string pred_dir_;
-    std::size_t first_frame_;
+    std::optional<std::size_t> first_frame_;
+    std::vector<bool> written_;  ///< frame numbers written, to refuse a second scan of one
     std::vector<float> buf_[4];  ///< x, y, z, intensity of the current scan
 };

@@ -5,6 +5,7 @@
  *         sensory frames.
  */
 #include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/obs/CObservationComment.h>
 #include <mrpt/obs/CObservationRobotPose.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
@@ -13,6 +14,7 @@
 #include <stdexcept>
 
 #include "ScanSource.h"
+#include "hif/apps/FrameComment.h"
 
 namespace hif::apps
 {
@@ -26,7 +28,7 @@ public:
     bool next(Scan& out) override
     {
         using namespace mrpt::obs;
-        if (frame_.next(out)) return counted(true);
+        if (frame_scans_.next(out)) return counted(true);
         auto arch = mrpt::serialization::archiveFrom(*in_);
         for (;;)
         {
@@ -45,6 +47,14 @@ public:
                                          std::to_string(scans_read_) +
                                          " scans: " + std::string(e.what()).substr(0, 300));
             }
+            if (auto comment = std::dynamic_pointer_cast<CObservationComment>(obj))
+            {
+                if (const auto f = parseKittiFrameComment(comment->text))
+                {
+                    frame_ = f;
+                    continue;
+                }
+            }
             if (auto rp = std::dynamic_pointer_cast<CObservationRobotPose>(obj))
             {
                 pose_ = rp->pose.mean;
@@ -61,9 +71,9 @@ public:
                     [](const auto& o) { return o && IS_CLASS(*o, CObservationRobotPose); });
                 if (first_scan != sf->end() && !have_pose_ && first_pose > first_scan)
                     throwNoPose();
-                frame_.assign(*sf, pose_);
+                frame_scans_.assign(*sf, pose_);
                 have_pose_ = false;
-                if (frame_.next(out)) return counted(true);
+                if (frame_scans_.next(out)) return counted(true);
                 continue;
             }
             auto obs = std::dynamic_pointer_cast<CObservation>(obj);
@@ -73,15 +83,17 @@ public:
                 continue;
             }
             if (!have_pose_) throwNoPose();
-            out = {obs, pose_};
+            out = {obs, pose_, frame_};
             have_pose_ = false;  // every scan needs its own pose: never reuse a stale one
+            frame_.reset();      // and its own number
             return counted(true);
         }
     }
 
     void rewind() override
     {
-        frame_.clear();
+        frame_scans_.clear();
+        frame_.reset();
         have_pose_ = false;
         scans_read_ = 0;
         skipped_ = 0;
@@ -111,7 +123,8 @@ private:
 
     std::string file_;
     std::unique_ptr<mrpt::io::CFileGZInputStream> in_;
-    FrameScans frame_;
+    FrameScans frame_scans_;
+    std::optional<std::size_t> frame_;  ///< from a "kitti frame N" comment, for the next scan
     mrpt::poses::CPose3D pose_;
     bool have_pose_ = false;
     std::size_t scans_read_ = 0;

@@ -14,16 +14,19 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace hif::apps
 {
-/** One scan: the observation and the robot pose it was taken at. */
+/** One scan: the observation, the robot pose it was taken at, and its number in its
+ *  sequence when the input says (kitti2rawlog's comments, a DynamicMap file's name). */
 struct Scan
 {
     mrpt::obs::CObservation::Ptr obs;
     mrpt::poses::CPose3D robot_pose;
+    std::optional<std::size_t> frame;
 };
 
 class ScanSource

@@ -23,6 +23,7 @@
 #include "Summary.h"
 #include "hif/CHeightIntervalMap.h"
 #include "hif/apps/Cli.h"
+#include "hif/apps/Staged.h"
 
 namespace fs = std::filesystem;
 
@@ -89,11 +90,11 @@ struct Cli
         "SLAM system gets); default: offline, insert all scans then classify every point "
         "against the final map (two passes over the input)",
         cmd};
-    TCLAP::ValueArg<std::size_t> first_frame{
+    TCLAP::ValueArg<long long> first_frame{
         "",
         "first-frame",
-        "Number of the first prediction file, e.g. the --first given to kitti2rawlog "
-        "(default: 0)",
+        "Number of the first prediction file, when the input does not number its scans "
+        "(kitti2rawlog's rawlogs and DynamicMap folders do; default: 0)",
         false,
         0,
         "N",
@@ -102,7 +103,7 @@ struct Cli
                                "Replace earlier results in the output folder (and "
                                "hif_output.pcd in a DynamicMap folder)",
                                cmd};
-    TCLAP::ValueArg<std::size_t> threads{
+    TCLAP::ValueArg<long long> threads{
         "t",
         "threads",
         "Threads for insertion and classification (overrides the .ini's threads; the result "
@@ -127,6 +128,9 @@ struct Run
     bool online = false, hold_scans = false, show_progress = true;
     std::unique_ptr<hif::apps::ScanSource> source;
     std::string dm_output;  ///< <folder>/hif_output.pcd for a DynamicMap folder, else empty
+    /** The outputs, written aside and put in place when complete. */
+    std::unique_ptr<hif::apps::StagedFolder> staged;
+    std::unique_ptr<hif::apps::StagedFile> staged_dm;
     mrpt::maps::CMultiMetricMap maps;
     hif::CHeightIntervalMap::Ptr hif_map;
 };
@@ -136,21 +140,24 @@ struct Run
 void setUp(Cli& cli, Run& run)
 {
     run.input = cli.input.getValue();
-    run.out_dir = cli.output.getValue();
+    run.out_dir = hif::apps::cleanDir(cli.output.getValue());
     run.online = cli.online.getValue();
     run.hold_scans = cli.hold_scans.getValue();
     run.show_progress = !cli.quiet.getValue();
     run.section = cli.section.getValue();
-    for (const char* f : {"summary.json", "map.hifmap", "static_map.ply", "static_map.pcd",
-                          "removed.ply", "removed.pcd", "predictions"})
-        hif::apps::refuseToOverwrite(run.out_dir + "/" + f, cli.overwrite.getValue(),
-                                     "--overwrite");
+    // Earlier results are replaced only when asked, and only once the new ones are complete.
+    run.staged = std::make_unique<hif::apps::StagedFolder>(
+        run.out_dir,
+        std::vector<std::string>{"summary.json", "map.hifmap", "static_map.ply", "static_map.pcd",
+                                 "removed.ply", "removed.pcd", "predictions"},
+        cli.overwrite.getValue(), "--overwrite");
 
     run.source = hif::apps::openScanSource(run.input);
     if (run.source->isDynamicMapFolder())
     {
-        run.dm_output = run.input + "/hif_output.pcd";
-        hif::apps::refuseToOverwrite(run.dm_output, cli.overwrite.getValue(), "--overwrite");
+        run.dm_output = hif::apps::cleanDir(run.input) + "/hif_output.pcd";
+        run.staged_dm = std::make_unique<hif::apps::StagedFile>(
+            run.dm_output, cli.overwrite.getValue(), "--overwrite");
     }
     run.cfg_file = cli.config.isSet() ? cli.config.getValue()
                                       : defaultConfig(run.online, run.source->isDynamicMapFolder());
@@ -171,15 +178,12 @@ void setUp(Cli& cli, Run& run)
     run.hif_map->insertionOptions.online_window = run.online;
     if (cli.threads.isSet())
     {
-        if (cli.threads.getValue() == 0) throw std::runtime_error("--threads must be >= 1");
-        run.hif_map->insertionOptions.threads = cli.threads.getValue();
+        run.hif_map->insertionOptions.threads = static_cast<uint64_t>(
+            hif::apps::flagInRange(cli.threads.getValue(), "--threads", 1, 1024));
         run.hif_map->applyOptions();
     }
     if (run.hold_scans && run.online)
         throw std::runtime_error("--hold-scans applies to offline mode only (not --online)");
-
-    hif::apps::makeDirs(run.out_dir);
-    if (cli.overwrite.getValue()) fs::remove_all(run.out_dir + "/predictions");
 }
 
 void printHeader(const Run& run)
@@ -278,23 +282,29 @@ int runClean(Cli& cli)
     setUp(cli, run);
     printHeader(run);
 
-    std::vector<std::string> static_files{run.out_dir + "/static_map.ply",
-                                          run.out_dir + "/static_map.pcd"};
-    if (!run.dm_output.empty()) static_files.push_back(run.dm_output);  // the benchmark's
-    Outputs out(run.out_dir, cli.first_frame.getValue(), std::move(static_files));
+    const std::string dir = run.staged->path();
+    std::vector<std::string> static_files{dir + "/static_map.ply", dir + "/static_map.pcd"};
+    if (run.staged_dm) static_files.push_back(run.staged_dm->path());  // the benchmark's
+    std::optional<std::size_t> first_frame;
+    if (cli.first_frame.isSet())
+        first_frame = static_cast<std::size_t>(
+            hif::apps::flagInRange(cli.first_frame.getValue(), "--first-frame", 0, 999999));
+    Outputs out(dir, first_frame, std::move(static_files));
     Timings t;
     std::vector<hif::apps::Scan> held = insertAll(run, out, t);
     if (!run.online) classifyAll(run, held, out, t.scans);
 
     const auto t_files = Clock::now();
     out.close();
-    writeMap(*run.hif_map, run.out_dir + "/map.hifmap");
+    writeMap(*run.hif_map, dir + "/map.hifmap");
     t.files_ms = msSince(t_files) + out.write_ms_total;
     t.total_s = msSince(t_start) / 1000.0;
 
     SummaryInfo info{run.input, run.cfg_file, run.online, run.hold_scans,
                      run.source->skippedObjects()};
-    writeSummary(run.out_dir + "/summary.json", info, *run.hif_map, out, t);
+    writeSummary(dir + "/summary.json", info, *run.hif_map, out, t);
+    run.staged->commit();
+    if (run.staged_dm) run.staged_dm->commit();
     printReport(kTag, run.out_dir, run.dm_output, run.online, *run.hif_map, out, t);
     return 0;
 }

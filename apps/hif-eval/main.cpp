@@ -131,13 +131,14 @@ void printRow(const char* name, const hif::io::Scores& s)
 
 int run(Cli& cli)
 {
-    const std::string pred_dir = cli.predictions.getValue();
-    const std::string label_dir = cli.labels.getValue();
-    const std::string scan_dir = cli.scans.getValue();
+    const std::string pred_dir = hif::apps::cleanDir(cli.predictions.getValue());
+    const std::string label_dir = hif::apps::cleanDir(cli.labels.getValue());
+    const std::string scan_dir = hif::apps::cleanDir(cli.scans.getValue());
     for (const auto& [dir, what] :
          {std::pair{pred_dir, "predictions"}, {label_dir, "labels"}, {scan_dir, "scans"}})
         if (!dir.empty() && !fs::is_directory(dir))
-            throw std::runtime_error(std::string(what) + " folder '" + dir + "' does not exist");
+            throw std::runtime_error(std::string(what) + " folder '" + dir +
+                                     (fs::exists(dir) ? "' is not a folder" : "' does not exist"));
     const double ego_radius = cli.ego_radius.getValue();
     if (!(ego_radius >= 0.0))
         throw std::runtime_error("--ego-radius must be >= 0, not " + std::to_string(ego_radius));

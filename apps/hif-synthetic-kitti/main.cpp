@@ -43,10 +43,10 @@ struct Cli
         ' ', "0.1"};
     TCLAP::ValueArg<std::string> output{"o",      "output", "Output sequence folder", true, "",
                                         "folder", cmd};
-    TCLAP::ValueArg<std::size_t> scans{"n", "scans", "Number of scans (default: 30)", false, 30,
-                                       "N", cmd};
-    TCLAP::ValueArg<unsigned> seed{"",  "seed", "Random seed of the scene (default: 1)", false, 1,
-                                   "S", cmd};
+    TCLAP::ValueArg<long long> scans{"n", "scans", "Number of scans (default: 30)", false, 30,
+                                     "N", cmd};
+    TCLAP::ValueArg<long long> seed{"",  "seed", "Random seed of the scene (default: 1)", false, 1,
+                                    "S", cmd};
     TCLAP::ValueArg<std::string> scene{
         "", "scene", "street (default) or walkers", false, "street", "street|walkers", cmd};
     TCLAP::ValueArg<double> ego_speed{
@@ -61,9 +61,11 @@ struct Cli
 int run(Cli& cli)
 {
     const std::string tag = "[hif-synthetic-kitti]";
-    const std::string dir = cli.output.getValue();
-    const std::size_t n = cli.scans.getValue();
-    if (n == 0) throw std::runtime_error("--scans must be at least 1");
+    const std::string dir = hif::apps::cleanDir(cli.output.getValue());
+    const auto n = static_cast<std::size_t>(
+        hif::apps::flagInRange(cli.scans.getValue(), "--scans", 1, 999999));
+    const auto seed = static_cast<std::mt19937::result_type>(
+        hif::apps::flagInRange(cli.seed.getValue(), "--seed", 0, 4294967295LL));
     hif::apps::refuseToOverwrite(dir + "/velodyne", cli.overwrite.getValue(), "--overwrite");
     if (cli.overwrite.getValue())
     {
@@ -84,7 +86,7 @@ int run(Cli& cli)
     if (cli.groups.getValue() < 0 || cli.groups.getValue() > 100)
         throw std::runtime_error("--groups " + std::to_string(cli.groups.getValue()) +
                                  " is not in [0, 100]");
-    std::mt19937 rng(cli.seed.getValue());
+    std::mt19937 rng(seed);
     const double length = ego_speed * kScanPeriod * double(n);
     const Scene scene = kind == "street" ? streetScene(rng, length)
                                          : walkersScene(rng, length, kScanPeriod * double(n),

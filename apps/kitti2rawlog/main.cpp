@@ -9,6 +9,7 @@
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/io/CFileOutputStream.h>
 #include <mrpt/maps/CPointsMapXYZI.h>
+#include <mrpt/obs/CObservationComment.h>
 #include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/obs/CObservationRobotPose.h>
 #include <mrpt/poses/CPose3D.h>
@@ -19,6 +20,8 @@
 #include <memory>
 
 #include "hif/apps/Cli.h"
+#include "hif/apps/FrameComment.h"
+#include "hif/apps/Staged.h"
 #include "hif/io/KittiSequence.h"
 #include "hif/io/Labels.h"
 
@@ -29,17 +32,18 @@ struct Cli
     TCLAP::CmdLine cmd{
         "kitti2rawlog: converts a KITTI odometry sequence (velodyne/*.bin, poses.txt, "
         "calib.txt, times.txt, optional labels/*.label) into an MRPT rawlog. Each scan becomes "
-        "a CObservationRobotPose (sensor label 'GROUND_TRUTH': the LiDAR pose in the world, "
-        "inv(Tr) * P_i * Tr) followed by a CObservationPointCloud (sensor label 'LIDAR', a "
+        "a CObservationComment 'kitti frame N' (its number in the sequence), a "
+        "CObservationRobotPose (sensor label 'GROUND_TRUTH': the LiDAR pose in the world, "
+        "inv(Tr) * P_i * Tr) and a CObservationPointCloud (sensor label 'LIDAR', a "
         "CPointsMapXYZI in the LiDAR frame, points in file order).",
         ' ', "0.1"};
     TCLAP::ValueArg<std::string> input{
         "i", "input", "KITTI sequence folder (e.g. .../sequences/08)", true, "", "folder", cmd};
     TCLAP::ValueArg<std::string> output{"o",          "output", "Output rawlog file", true, "",
                                         "out.rawlog", cmd};
-    TCLAP::ValueArg<std::size_t> first{"",  "first", "First scan to convert (default: 0)", false, 0,
-                                       "N", cmd};
-    TCLAP::ValueArg<long> last{
+    TCLAP::ValueArg<long long> first{"",  "first", "First scan to convert (default: 0)", false, 0,
+                                     "N", cmd};
+    TCLAP::ValueArg<long long> last{
         "", "last", "Last scan to convert, inclusive (default: the last one)", false, -1, "M", cmd};
     TCLAP::SwitchArg external{
         "", "external",
@@ -63,9 +67,12 @@ int run(Cli& cli)
     const std::string tag = "[kitti2rawlog]";
     const hif::io::KittiSequence seq(cli.input.getValue());
     const std::size_t n = seq.size();
-    const std::size_t first = cli.first.getValue();
-    const std::size_t last =
-        cli.last.getValue() < 0 ? n - 1 : static_cast<std::size_t>(cli.last.getValue());
+    const auto max_scan = static_cast<long long>(n) - 1;
+    const auto first = static_cast<std::size_t>(
+        hif::apps::flagInRange(cli.first.getValue(), "--first", 0, max_scan));
+    const auto last = cli.last.isSet() ? static_cast<std::size_t>(hif::apps::flagInRange(
+                                             cli.last.getValue(), "--last", 0, max_scan))
+                                       : n - 1;
     if (last >= n)
         throw std::runtime_error("--last " + std::to_string(last) + " is past the last scan (" +
                                  std::to_string(n - 1) + ") of '" + seq.dir() + "'");
@@ -76,7 +83,8 @@ int run(Cli& cli)
     if (level < 0 || level > 9)
         throw std::runtime_error("--compress-level " + std::to_string(level) + " is not in 0-9");
     const std::string out_file = cli.output.getValue();
-    hif::apps::refuseToOverwrite(out_file, cli.overwrite.getValue(), "--overwrite");
+    // Written aside and renamed when complete: a failed conversion leaves no partial rawlog.
+    hif::apps::StagedFile staged(out_file, cli.overwrite.getValue(), "--overwrite");
 
     // Check every scan (and label file) before writing anything.
     std::size_t total_points = 0, labelled = 0;
@@ -106,14 +114,15 @@ int run(Cli& cli)
     if (level > 0)
     {
         auto gz = std::make_unique<mrpt::io::CFileGZOutputStream>();
-        if (!gz->open(out_file, level))
+        if (!gz->open(staged.path(), level))
             throw std::runtime_error("cannot create '" + out_file + "'");
         stream = std::move(gz);
     }
     else
     {
         auto plain = std::make_unique<mrpt::io::CFileOutputStream>();
-        if (!plain->open(out_file)) throw std::runtime_error("cannot create '" + out_file + "'");
+        if (!plain->open(staged.path()))
+            throw std::runtime_error("cannot create '" + out_file + "'");
         stream = std::move(plain);
     }
     auto arch = mrpt::serialization::archiveFrom(*stream);
@@ -123,6 +132,12 @@ int run(Cli& cli)
     {
         // KITTI times are seconds from the start of the sequence.
         const auto stamp = mrpt::Clock::fromDouble(seq.time(i));
+        // The scan's number in the sequence, so that hif-clean names its predictions after it.
+        auto frame = mrpt::obs::CObservationComment::Create();
+        frame->sensorLabel = "KITTI_FRAME";
+        frame->timestamp = stamp;
+        frame->text = hif::apps::kittiFrameComment(i);
+        arch << *frame;
         auto pose_obs = mrpt::obs::CObservationRobotPose::Create();
         pose_obs->sensorLabel = "GROUND_TRUTH";
         pose_obs->timestamp = stamp;
@@ -152,6 +167,8 @@ int run(Cli& cli)
         progress.update(i - first + 1);
     }
     progress.finish();
+    stream.reset();  // flushed and closed
+    staged.commit();
     std::cout << tag << " done: " << (last - first + 1) << " scans\n";
     return 0;
 }

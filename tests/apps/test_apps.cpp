@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "app_runner.h"
 #include "hif/CHeightIntervalMap.h"
 #include "hif/io/CloudFiles.h"
 #include "hif/io/KittiSequence.h"
@@ -31,45 +32,9 @@
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-namespace
-{
-const std::string kBin = HIF_APPS_DIR;
-const std::string kWork = HIF_TEST_WORK_DIR;
-
-struct Result
-{
-    int code;
-    std::string output;  // stdout and stderr
-};
-
-Result runApp(const std::string& app, const std::string& args)
-{
-    // One log per process: CTest runs two test processes at a time.
-    const std::string log = kWork + "/last_command_" + std::to_string(getpid()) + ".log";
-    const std::string cmd = kBin + "/" + app + " " + args + " > " + log + " 2>&1";
-    const int status = std::system(cmd.c_str());
-    std::ifstream f(log);
-    std::stringstream ss;
-    ss << f.rdbuf();
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
-}
-
-json readJson(const std::string& file)
-{
-    std::ifstream f(file);
-    EXPECT_TRUE(f.good()) << file;
-    return json::parse(f);
-}
-
-std::string fresh(const std::string& name)
-{
-    const std::string d = kWork + "/" + name;
-    fs::remove_all(d);
-    fs::create_directories(d);
-    return d;
-}
-
-}  // namespace
+using hif::test::fresh;
+using hif::test::readJson;
+using hif::test::runApp;
 
 TEST(Apps, HelpExitsZeroAndABadFlagStopsTheApp)
 {
@@ -304,7 +269,7 @@ TEST_F(SyntheticPipeline, ThreadsAndHeldScansGiveIdenticalResults)
         << r.output;
     r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + root_ + "/x -q --threads 0");
     EXPECT_NE(r.code, 0);
-    EXPECT_NE(r.output.find("--threads must be >= 1"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("--threads 0 is not in [1, 1024]"), std::string::npos) << r.output;
 }
 
 TEST_F(SyntheticPipeline, RefusesToOverwriteAndNamesBadInput)

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <numeric>
 #include <stdexcept>
 
@@ -55,6 +56,10 @@ Progress::Progress(std::string prefix, std::string what, std::size_t total, bool
 
 void Progress::print(std::size_t done, bool final_line)
 {
+    // What was written to stdout first comes first, also when both go to one file.
+    std::cout.flush();
+    std::fflush(stdout);
+    printed_ = true;
     const double secs =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     const double rate = secs > 0 ? double(done) / secs : 0.0;
@@ -106,7 +111,9 @@ void Progress::finish()
 {
     if (!enabled_ || finished_) return;
     finished_ = true;
-    if (tty_) print(done_, true);
+    // On a terminal, the last state stays; in a log, a run too short for any line, or of
+    // unknown length, still says how it went.
+    if (tty_ || !printed_ || total_ == 0) print(done_, true);
 }
 
 void makeDirs(const std::string& dir)

@@ -144,6 +144,7 @@ std::size_t KittiSequence::pointCount(std::size_t i) const
     std::error_code ec;
     const auto bytes = fs::file_size(f, ec);
     if (ec) throwFileError(f, "has a size that cannot be read: " + ec.message());
+    if (bytes == 0) throwFileError(f, "is empty (0 bytes): truncated? (a scan has points)");
     if (bytes % 16 != 0)
         throwFileError(f, "is " + std::to_string(bytes) +
                               " bytes, not a multiple of 16 (x y z intensity as float32): "

@@ -10,27 +10,40 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "IniSection.h"
 #include "hif/CHeightIntervalMap.h"
 
 using namespace hif;
+using hif::mrpt_adapter::IniSection;
 
 namespace
 {
-/** Reads every field of `s` present in `section` (absent keys keep their value). */
+/** The keys of S's fields. */
 template <typename S>
-void loadFields(S& s, const mrpt::config::CConfigFileBase& c, const std::string& section)
+std::vector<std::string> keysOf()
+{
+    std::vector<std::string> keys;
+    forEachField<S>([&](const Field<S>& f, auto) { keys.emplace_back(f.name); });
+    return keys;
+}
+
+/** Reads every field of `s` present in `section` (absent keys keep their value), strictly. */
+template <typename S>
+void loadFields(S& s, const IniSection& section)
 {
     forEachField<S>(
         [&](const Field<S>& f, auto member)
         {
             auto& v = s.*member;
             using T = std::decay_t<decltype(v)>;
-            if constexpr (std::is_same_v<T, bool>)
-                v = c.read_bool(section, f.name, v);
-            else if constexpr (std::is_same_v<T, double>)
-                v = c.read_double(section, f.name, v);
+            if constexpr (std::is_same_v<T, std::size_t>)
+            {
+                uint64_t u = v;
+                section.read(f.name, u);
+                v = static_cast<T>(u);
+            }
             else
-                v = static_cast<T>(c.read_uint64_t(section, f.name, v));
+                section.read(f.name, v);
         });
 }
 
@@ -58,9 +71,9 @@ void saveFields(const S& s, mrpt::config::CConfigFileBase& c, const std::string&
         });
 }
 
-/** Runs `validate`, adding the section to its message. */
+/** Runs `validate`, adding where the values come from to its message. */
 template <typename F>
-void validateIn(const std::string& section, F&& validate)
+void validateIn(const IniSection& section, F&& validate)
 {
     try
     {
@@ -68,7 +81,7 @@ void validateIn(const std::string& section, F&& validate)
     }
     catch (const std::invalid_argument& e)
     {
-        throw std::invalid_argument("[" + section + "] " + e.what());
+        section.fail(e.what());
     }
 }
 }  // namespace
@@ -76,12 +89,16 @@ void validateIn(const std::string& section, F&& validate)
 void CHeightIntervalMap::TInsertionOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
-    loadFields<Params>(*this, c, s);
-    threads = c.read_uint64_t(s, "threads", threads);
-    online_window = c.read_bool(s, "online_window", online_window);
-    if (threads == 0) throw std::invalid_argument("[" + s + "] threads = 0: must be >= 1");
-    // Validate now, so that a bad value is reported with the section it came from.
-    validateIn(s, [&] { Params::validate(); });
+    const IniSection section(c, s);
+    std::vector<std::string> known = keysOf<Params>();
+    known.insert(known.end(), {"threads", "online_window"});
+    section.requireKnownKeys(known);
+    loadFields<Params>(*this, section);
+    section.read("threads", threads);
+    section.read("online_window", online_window);
+    if (threads == 0) section.fail("threads = 0: must be >= 1");
+    // Validate now, so that a bad value is reported with where it came from.
+    validateIn(section, [&] { Params::validate(); });
 }
 
 void CHeightIntervalMap::TInsertionOptions::saveToConfigFile(mrpt::config::CConfigFileBase& c,
@@ -99,11 +116,13 @@ CHeightIntervalMap::TMapDefinition::TMapDefinition() = default;
 void CHeightIntervalMap::TMapDefinition::loadFromConfigFile_map_specific(
     const mrpt::config::CConfigFileBase& source, const std::string& sectionNamePrefix)
 {
-    const std::string s = sectionNamePrefix + "_creationOpts";
-    loadFields<GridGeometry>(geometry, source, s);
-    validateIn(s, [&] { geometry.validate(); });
+    const IniSection creation(source, sectionNamePrefix + "_creationOpts");
+    creation.requireKnownKeys(keysOf<GridGeometry>());
+    loadFields<GridGeometry>(geometry, creation);
+    validateIn(creation, [&] { geometry.validate(); });
     insertionOpts.loadFromConfigFile(source, sectionNamePrefix + "_insertOpts");
-    validateIn(sectionNamePrefix + "_insertOpts", [&] { insertionOpts.validateWith(geometry); });
+    validateIn(IniSection(source, sectionNamePrefix + "_insertOpts"),
+               [&] { insertionOpts.validateWith(geometry); });
 }
 
 void CHeightIntervalMap::TMapDefinition::dumpToTextStream_map_specific(std::ostream& out) const

@@ -6,6 +6,8 @@
  */
 #pragma once
 
+#include <mrpt/core/exceptions.h>
+
 #include <chrono>
 #include <cstddef>
 #include <exception>
@@ -51,8 +53,28 @@ private:
     std::size_t last_decile_ = 0;
     std::size_t done_ = 0;
     bool finished_ = false;
+    bool printed_ = false;
     void print(std::size_t done, bool final_line);
 };
+
+/** `value` of integer flag `flag` (e.g. "--threads"), which must lie in [lo, hi] (flags are read
+ *  as signed numbers, so that a negative one is an error, not a wrapped huge one); throws
+ *  std::runtime_error naming the flag otherwise. */
+inline long long flagInRange(long long value, const std::string& flag, long long lo, long long hi)
+{
+    if (value < lo || value > hi)
+        throw std::runtime_error(flag + " " + std::to_string(value) + " is not in [" +
+                                 std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return value;
+}
+
+/** `dir` without a trailing separator ("out/" -> "out"), so that paths join cleanly. */
+[[nodiscard]] inline std::string cleanDir(const std::string& dir)
+{
+    std::string d = dir;
+    while (d.size() > 1 && d.back() == '/') d.pop_back();
+    return d;
+}
 
 /** Creates `dir` (and parents). Throws std::runtime_error naming it on failure. */
 void makeDirs(const std::string& dir);
@@ -60,6 +82,26 @@ void makeDirs(const std::string& dir);
 /** Throws std::runtime_error if `file` exists and `overwrite` is false: nothing the user has
  *  is replaced without being asked. */
 void refuseToOverwrite(const std::string& file, bool overwrite, const std::string& flag);
+
+/** What an error says, without the call stack MRPT adds when an exception passes through its
+ *  code (the user's mistake, not a crash: the message names the file and the problem). */
+inline std::string errorMessage(const std::exception& e)
+{
+    if (const auto* wrapped = dynamic_cast<const mrpt::ExceptionWithCallBackBase*>(&e))
+    {
+        std::string m = wrapped->originalWhat;
+        // A message that went through MRPT twice holds the first one's text.
+        const auto at = m.find("Message:");
+        if (m.find("==== MRPT exception ====") != std::string::npos && at != std::string::npos)
+        {
+            m = m.substr(at + 8);
+            m = m.substr(0, m.find('\n'));
+        }
+        const auto b = m.find_first_not_of(' ');
+        return b == std::string::npos ? m : m.substr(b);
+    }
+    return e.what();
+}
 
 /** The whole main() of an app: parses the command line into a `Cli` (which holds a TCLAP
  *  `cmd` with its arguments), calls `run(cli)`, and turns any exception into
@@ -85,7 +127,7 @@ int cliMain(const char* tag, int argc, char** argv, Run run)
     }
     catch (const std::exception& e)
     {
-        std::cerr << tag << " error: " << e.what() << "\n";
+        std::cerr << tag << " error: " << errorMessage(e) << "\n";
         return 1;
     }
 }

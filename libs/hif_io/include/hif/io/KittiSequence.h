@@ -41,8 +41,8 @@ public:
     [[nodiscard]] std::string scanFile(std::size_t i) const;
     [[nodiscard]] std::string labelFile(std::size_t i) const;
 
-    /** Number of points of scan i, from its file size; throws if the size is not a multiple
-     *  of 16 bytes. */
+    /** Number of points of scan i, from its file size; throws if the file is empty or its size
+     *  is not a multiple of 16 bytes. */
     [[nodiscard]] std::size_t pointCount(std::size_t i) const;
     /** The points of scan i, in the LiDAR frame, in file order. Throws naming the file if it
      *  cannot be read whole. */

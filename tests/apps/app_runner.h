@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   app_runner.h
+ * @brief  Test helper: run an app as a user does (stdout and stderr to one log), read JSON,
+ *         make a fresh work folder.
+ */
+#pragma once
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace hif::test
+{
+inline const std::string kBin = HIF_APPS_DIR;
+inline const std::string kWork = HIF_TEST_WORK_DIR;
+
+struct Result
+{
+    int code;
+    std::string output;  // stdout and stderr, as they were interleaved
+};
+
+inline Result runApp(const std::string& app, const std::string& args)
+{
+    // One log per process: CTest runs two test processes at a time.
+    const std::string log = kWork + "/last_command_" + std::to_string(getpid()) + ".log";
+    const std::string cmd = kBin + "/" + app + " " + args + " > " + log + " 2>&1";
+    const int status = std::system(cmd.c_str());
+    std::ifstream f(log);
+    std::stringstream ss;
+    ss << f.rdbuf();
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
+}
+
+inline nlohmann::json readJson(const std::string& file)
+{
+    std::ifstream f(file);
+    EXPECT_TRUE(f.good()) << file;
+    return nlohmann::json::parse(f);
+}
+
+inline std::string fresh(const std::string& name)
+{
+    const std::string d = kWork + "/" + name;
+    std::filesystem::remove_all(d);
+    std::filesystem::create_directories(d);
+    return d;
+}
+
+inline std::string bytesOf(const std::string& file)
+{
+    std::ifstream in(file, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+}  // namespace hif::test
