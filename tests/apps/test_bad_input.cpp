@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "app_runner.h"
+#include "hif/io/CloudFiles.h"
 #include "hif/io/Labels.h"
 
 namespace fs = std::filesystem;
@@ -202,4 +203,42 @@ TEST_F(BadInput, RedirectedOutputReadsInOrderAndFoldersAreNamedForWhatTheyAre)
     expectError(runApp("hif-eval", "--labels " + root_ + "/all.rawlog --predictions " + root_ +
                                        "/log/predictions"),
                 "labels folder '" + root_ + "/all.rawlog' is not a folder");
+}
+
+// Found by fuzz_pcd (tests/fuzz): a header whose sizes or point count the file cannot hold is
+// refused before anything is allocated for it, naming the file and the number.
+TEST(BadPcd, AHeaderThatPromisesMoreThanTheFileHoldsIsRefused)
+{
+    const std::string dir = fresh("bad_pcd_" + std::to_string(getpid()));
+    auto pcd = [&](const std::string& size, const std::string& count, const std::string& points)
+    {
+        const std::string file = dir + "/scan.pcd";
+        std::ofstream f(file, std::ios::binary | std::ios::trunc);
+        f << "FIELDS x y z\nSIZE 4 4 " << size << "\nTYPE F F F\nCOUNT 1 1 " << count << "\nPOINTS "
+          << points << "\nDATA binary\n";
+        const float xyz[6] = {1, 2, 3, 4, 5, 6};
+        f.write(reinterpret_cast<const char*>(xyz), sizeof(xyz));
+        return file;
+    };
+    auto message = [](const std::string& file)
+    {
+        try
+        {
+            (void)hif::io::readPcd(file);
+        }
+        catch (const std::exception& e)
+        {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_EQ(hif::io::readPcd(pcd("4", "1", "2")).x.size(), 2u);
+    EXPECT_NE(message(pcd("-4", "1", "2")).find("has SIZE -4 for field z"), std::string::npos);
+    EXPECT_NE(message(pcd("4", "0", "2")).find("has COUNT 0 for field z"), std::string::npos);
+    const std::string big = message(pcd("4", "1", "1000000000000"));
+    EXPECT_NE(big.find("scan.pcd"), std::string::npos) << big;
+    EXPECT_NE(big.find("POINTS says 1000000000000, but 24 bytes of data follow DATA"),
+              std::string::npos)
+        << big;
+    EXPECT_NE(message(pcd("4", "1", "3")).find("POINTS says 3, but 24 bytes"), std::string::npos);
 }

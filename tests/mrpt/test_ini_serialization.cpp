@@ -267,6 +267,46 @@ TEST(CHeightIntervalMapSerialization, TruncatedDataThrows)
     EXPECT_THROW(in >> loaded, std::exception);
 }
 
+// Found by fuzz_map (tests/fuzz): a byte other than 0 or 1 where a bool option is stored was
+// loaded into the bool (undefined behaviour); it is a corrupt file.
+TEST(CHeightIntervalMapSerialization, ABoolOptionThatIsNeither0Nor1IsCorrupt)
+{
+    auto bytes = [](bool lhp)
+    {
+        CHeightIntervalMap map;
+        map.insertionOptions.low_height_preservation = lhp;
+        mrpt::io::CMemoryStream buf;
+        auto out = mrpt::serialization::archiveFrom(buf);
+        out << map;
+        const auto* p = static_cast<const uint8_t*>(buf.getRawBufferData());
+        return std::vector<uint8_t>(p, p + buf.getTotalBytesCount());
+    };
+    const auto on = bytes(true), off = bytes(false);
+    ASSERT_EQ(on.size(), off.size());
+    std::vector<std::size_t> differ;
+    for (std::size_t k = 0; k < on.size(); ++k)
+        if (on[k] != off[k]) differ.push_back(k);
+    ASSERT_EQ(differ.size(), 1u);  // the option's one byte
+    auto corrupt = on;
+    corrupt[differ[0]] = 2;
+    mrpt::io::CMemoryStream in_buf;
+    in_buf.Write(corrupt.data(), corrupt.size());
+    in_buf.Seek(0);
+    auto in = mrpt::serialization::archiveFrom(in_buf);
+    CHeightIntervalMap loaded;
+    try
+    {
+        in >> loaded;
+        FAIL() << "a corrupt bool loaded";
+    }
+    catch (const std::exception& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("option low_height_preservation is 2, not a bool"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(CHeightIntervalMapIni, ShippedKittiConfigsLoadTheDocumentedDefaults)
 {
     for (const std::string name : {"kitti.ini", "kitti-online.ini", "dynamicmap.ini"})

@@ -144,6 +144,20 @@ PcdCloud readPcd(const std::string& file)
     if (sizes.size() != fields.size() || types.size() != fields.size() ||
         counts.size() != fields.size())
         throwFileError(file, "has FIELDS, SIZE, TYPE and COUNT of different lengths");
+    for (std::size_t k = 0; k < fields.size(); ++k)
+    {
+        if (sizes[k] != 1 && sizes[k] != 2 && sizes[k] != 4 && sizes[k] != 8)
+            throwFileError(file, "has SIZE " + std::to_string(sizes[k]) + " for field " +
+                                     fields[k] + " (expected 1, 2, 4 or 8)");
+        if (counts[k] < 1 || counts[k] > (1 << 20))
+            throwFileError(file, "has COUNT " + std::to_string(counts[k]) + " for field " +
+                                     fields[k] + " (expected 1 to 1048576)");
+    }
+    // Refuse a POINTS that the rest of the file cannot hold before allocating for it.
+    const auto data_start = f.tellg();
+    f.seekg(0, std::ios::end);
+    const auto data_bytes = static_cast<std::size_t>(f.tellg() - data_start);
+    f.seekg(data_start);
     int ix = -1, iy = -1, iz = -1, ii = -1;
     std::vector<std::size_t> offset(fields.size());
     std::size_t stride = 0;
@@ -162,6 +176,11 @@ PcdCloud readPcd(const std::string& file)
         if (k >= 0 && (types[k] != 'F' || sizes[k] != 4))
             throwFileError(file,
                            "has a field " + fields[k] + " that is not float32 (TYPE F, SIZE 4)");
+    // Binary points take `stride` bytes each; ascii ones at least two ("0\n").
+    const std::size_t min_bytes = data == "binary" ? stride : 2;
+    if (points > data_bytes / min_bytes)
+        throwFileError(file, "is truncated: POINTS says " + std::to_string(points) + ", but " +
+                                 std::to_string(data_bytes) + " bytes of data follow DATA");
     out.x.resize(points);
     out.y.resize(points);
     out.z.resize(points);

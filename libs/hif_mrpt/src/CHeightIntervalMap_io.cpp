@@ -55,6 +55,16 @@ void CHeightIntervalMap::TInsertionOptions::readFromStream(mrpt::serialization::
                     in >> u;
                     value = static_cast<std::size_t>(u);
                 }
+                else if constexpr (std::is_same_v<std::decay_t<decltype(value)>, bool>)
+                {
+                    // One byte, 0 or 1 (read as a byte: any other value in a bool is undefined).
+                    uint8_t b = 0;
+                    in >> b;
+                    if (b > 1)
+                        THROW_EXCEPTION_FMT("Corrupt hif map: option %s is %u, not a bool", f.name,
+                                            static_cast<unsigned>(b));
+                    value = b == 1;
+                }
                 else
                     in >> value;
             });

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: BSD-3-Clause
+# Builds the libFuzzer targets of tests/fuzz with clang (+ AddressSanitizer and
+# UndefinedBehaviorSanitizer) into ./build-fuzz (or $HIF_FUZZ_BUILD_DIR), then runs each for
+# $HIF_FUZZ_SECONDS seconds (default 60) from the seed corpus in tests/fuzz/corpus. The corpus
+# grown by a run is kept in the build folder (the seeds in the repository are not touched); a
+# crash leaves its input in <build>/artifacts/ and fails the script.
+#   bash scripts/fuzz.sh                 all targets, 60 s each
+#   HIF_FUZZ_SECONDS=600 bash scripts/fuzz.sh fuzz_pcd
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BUILD_DIR=${HIF_FUZZ_BUILD_DIR:-build-fuzz}
+SECONDS_EACH=${HIF_FUZZ_SECONDS:-60}
+TARGETS=("$@")
+[ ${#TARGETS[@]} -eq 0 ] && TARGETS=(fuzz_kitti fuzz_pcd fuzz_rawlog fuzz_map)
+mkdir -p "$BUILD_DIR"
+CXX=clang++ CC=clang cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DHIF_FUZZ=ON -DHIF_SANITIZE=address,undefined -DHIF_BUILD_TESTS=OFF -DHIF_BUILD_BENCH=OFF \
+  > "$BUILD_DIR/configure.log" 2>&1 || { cat "$BUILD_DIR/configure.log"; exit 1; }
+start=$(date +%s)
+cmake --build "$BUILD_DIR" -j "$(nproc)" --target "${TARGETS[@]}"
+echo "[fuzz] built in $(( $(date +%s) - start )) s"
+mkdir -p "$BUILD_DIR/artifacts"
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+for t in "${TARGETS[@]}"; do
+  corpus="$BUILD_DIR/corpus/$t"
+  mkdir -p "$corpus"
+  echo "[fuzz] $t: ${SECONDS_EACH} s from tests/fuzz/corpus/$t"
+  # Memory: a reader must refuse a size that its file cannot hold, not try to allocate it.
+  if ! "$BUILD_DIR/tests/fuzz/$t" "$corpus" "tests/fuzz/corpus/$t" \
+      -max_total_time="$SECONDS_EACH" -rss_limit_mb=2048 -malloc_limit_mb=1024 -timeout=20 \
+      -max_len=16384 -print_final_stats=1 -artifact_prefix="$BUILD_DIR/artifacts/$t-" \
+      > "$BUILD_DIR/$t.log" 2>&1; then
+    tail -60 "$BUILD_DIR/$t.log"
+    echo "[fuzz] $t FAILED: input in $BUILD_DIR/artifacts/ (run $BUILD_DIR/tests/fuzz/$t <file>)"
+    exit 1
+  fi
+  runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$BUILD_DIR/$t.log" | grep -o '[0-9]*$')
+  echo "[fuzz] $t: $runs executions in ${SECONDS_EACH} s, no crash; corpus $(ls "$corpus" | wc -l) inputs"
+done
