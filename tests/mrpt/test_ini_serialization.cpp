@@ -13,7 +13,9 @@
 #include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/rtti/CObject.h>
 #include <mrpt/serialization/CArchive.h>
+#include <sys/resource.h>
 
+#include <cstring>
 #include <random>
 
 #include "field_helpers.h"
@@ -305,6 +307,53 @@ TEST(CHeightIntervalMapSerialization, ABoolOptionThatIsNeither0Nor1IsCorrupt)
                   std::string::npos)
             << e.what();
     }
+}
+
+// Found by fuzz_map (tests/fuzz): a pillar's interval count, bounded only by the file's own
+// max_intervals_per_pillar, was allocated before its intervals were read: a short file could
+// ask for gigabytes. The intervals are read one at a time; the file ends first.
+TEST(CHeightIntervalMapSerialization, AHugeIntervalCountInAShortFileIsNotAllocated)
+{
+    CHeightIntervalMap map;
+    map.insertionOptions.max_intervals_per_pillar = std::size_t{1} << 40;
+    auto cloud = mrpt::maps::CSimplePointsMap::Create();
+    cloud->insertPoint(1.f, 1.f, 0.5f);
+    mrpt::obs::CObservationPointCloud obs;
+    obs.pointcloud = cloud;
+    map.insertObservation(obs, mrpt::poses::CPose3D());
+    ASSERT_EQ(map.grid().pillarCount(), 1u);
+    mrpt::io::CMemoryStream buf;
+    auto out = mrpt::serialization::archiveFrom(buf);
+    out << map;
+    // The stream ends with the one pillar's interval count (uint32), its intervals (12 bytes
+    // each) and MRPT's end-of-object byte.
+    const uint32_t intervals =
+        static_cast<uint32_t>(map.grid().sortedPillars().at(0).second->intervals.size());
+    ASSERT_GE(intervals, 1u);
+    std::vector<uint8_t> bytes(
+        static_cast<const uint8_t*>(buf.getRawBufferData()),
+        static_cast<const uint8_t*>(buf.getRawBufferData()) + buf.getTotalBytesCount());
+    const std::size_t at = bytes.size() - 1 - 12 * intervals - 4;
+    uint32_t count = 0;
+    std::memcpy(&count, &bytes[at], 4);
+    ASSERT_EQ(count, intervals);
+    count = 1u << 25;  // 384 MiB of intervals (far more fails to allocate at all)
+    std::memcpy(&bytes[at], &count, 4);
+    mrpt::io::CMemoryStream in_buf;
+    in_buf.Write(bytes.data(), bytes.size());
+    in_buf.Seek(0);
+    auto in = mrpt::serialization::archiveFrom(in_buf);
+    struct rusage before
+    {
+    };
+    getrusage(RUSAGE_SELF, &before);
+    CHeightIntervalMap loaded;
+    EXPECT_THROW(in >> loaded, std::exception);
+    struct rusage after
+    {
+    };
+    getrusage(RUSAGE_SELF, &after);
+    EXPECT_LT(after.ru_maxrss - before.ru_maxrss, 256 * 1024) << "kB of peak memory added";
 }
 
 TEST(CHeightIntervalMapIni, ShippedKittiConfigsLoadTheDocumentedDefaults)

@@ -7,6 +7,7 @@
 #include <mrpt/opengl/COpenGLScene.h>
 #include <mrpt/opengl/CSetOfObjects.h>
 #include <mrpt/serialization/CArchive.h>
+#include <algorithm>
 
 #include <fstream>
 
@@ -108,8 +109,15 @@ void CHeightIntervalMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_
         if (count > params().max_intervals_per_pillar)
             THROW_EXCEPTION_FMT("Corrupt hif map: pillar with %u intervals, above the bound",
                                 count);
-        pillar.intervals.resize(count);
-        for (Interval& iv : pillar.intervals) in >> iv.lo >> iv.hi >> iv.logodds;
+        // One at a time: a corrupt count in a short file ends in an end-of-file error, not in
+        // allocating what the count says.
+        pillar.intervals.reserve(std::min<uint32_t>(count, 64));
+        for (uint32_t j = 0; j < count; ++j)
+        {
+            Interval iv;
+            in >> iv.lo >> iv.hi >> iv.logodds;
+            pillar.intervals.push_back(iv);
+        }
         grid_.setPillar(idx, std::move(pillar));
     }
     last_insert_ = {};
