@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
-# A long run: N synthetic scans (default 5,000: a 4 km street at 8 m/s) through hif-clean, its
-# resident memory sampled every second. Prints the curve (seconds, phase, MiB) and writes it to
+# A long run: N synthetic scans (default 5,000) through hif-clean, its resident memory sampled
+# every second. The sensor creeps along the street at $HIF_EGO_SPEED m/s (default 0.3: 150 m in
+# 5,000 scans; the generator traces every ray against the whole street, so a street as long as
+# 5,000 scans at driving speed would take hours to make), cars passing it. Prints the curve (seconds, phase, MiB) and writes it to
 # <work>/memory.csv. The generated sequence (about 1.2 MB a scan) is deleted at the end unless
 # HIF_KEEP=1. Not a test: it takes minutes and several GB of disk.
 #   bash scripts/long-run.sh [scans] [work folder]     (after scripts/build.sh)
@@ -13,7 +15,8 @@ WORK=${2:-/tmp/hif-long-run}
 BIN=${HIF_BUILD_DIR:-build}/apps
 mkdir -p "$WORK"
 echo "[long-run] $N scans in $WORK"
-"$BIN/hif-synthetic-kitti" -n "$N" -o "$WORK/seq" --overwrite | tail -1
+"$BIN/hif-synthetic-kitti" -n "$N" -o "$WORK/seq" --ego-speed "${HIF_EGO_SPEED:-0.3}" --overwrite \
+  | tail -1
 "$BIN/kitti2rawlog" -i "$WORK/seq" -o "$WORK/seq.rawlog" --external --overwrite | tail -1
 # shellcheck disable=SC2086
 "$BIN/hif-clean" -i "$WORK/seq.rawlog" -o "$WORK/out" --overwrite ${HIF_CLEAN_ARGS:-} \
