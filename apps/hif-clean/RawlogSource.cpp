@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "ScanSource.h"
+#include "hif/apps/Cli.h"
 #include "hif/apps/FrameComment.h"
 
 namespace hif::apps
@@ -45,7 +46,7 @@ public:
             {
                 throw std::runtime_error("rawlog '" + file_ + "' is corrupt or truncated after " +
                                          std::to_string(scans_read_) +
-                                         " scans: " + std::string(e.what()).substr(0, 300));
+                                         " scans: " + innermostMessage(e.what()));
             }
             if (auto comment = std::dynamic_pointer_cast<CObservationComment>(obj))
             {

@@ -293,6 +293,8 @@ TEST_F(SyntheticPipeline, RefusesToOverwriteAndNamesBadInput)
     EXPECT_NE(r.code, 0);
     EXPECT_NE(r.output.find("truncated.rawlog' is corrupt or truncated"), std::string::npos)
         << r.output;
+    // What MRPT found, without its exception frames.
+    EXPECT_EQ(r.output.find("==== MRPT exception"), std::string::npos) << r.output;
     // A short pose file is named with the counts.
     const std::string bad = fresh("short_poses");
     fs::copy(root_ + "/seq", bad, fs::copy_options::recursive);

@@ -83,23 +83,27 @@ void makeDirs(const std::string& dir);
  *  is replaced without being asked. */
 void refuseToOverwrite(const std::string& file, bool overwrite, const std::string& flag);
 
+/** The text of an MRPT exception without its frames and backtrace: for one that went through
+ *  MRPT several times (a wrapped exception), the innermost message, which says what was wrong.
+ *  Any other text is returned as it is. */
+inline std::string innermostMessage(std::string m)
+{
+    const auto at = m.rfind("Message:");
+    if (m.find("==== MRPT exception ====") != std::string::npos && at != std::string::npos)
+    {
+        m = m.substr(at + 8);
+        m = m.substr(0, m.find('\n'));
+    }
+    const auto b = m.find_first_not_of(' ');
+    return b == std::string::npos ? m : m.substr(b);
+}
+
 /** What an error says, without the call stack MRPT adds when an exception passes through its
  *  code (the user's mistake, not a crash: the message names the file and the problem). */
 inline std::string errorMessage(const std::exception& e)
 {
     if (const auto* wrapped = dynamic_cast<const mrpt::ExceptionWithCallBackBase*>(&e))
-    {
-        std::string m = wrapped->originalWhat;
-        // A message that went through MRPT twice holds the first one's text.
-        const auto at = m.find("Message:");
-        if (m.find("==== MRPT exception ====") != std::string::npos && at != std::string::npos)
-        {
-            m = m.substr(at + 8);
-            m = m.substr(0, m.find('\n'));
-        }
-        const auto b = m.find_first_not_of(' ');
-        return b == std::string::npos ? m : m.substr(b);
-    }
+        return innermostMessage(wrapped->originalWhat);
     return e.what();
 }
 
