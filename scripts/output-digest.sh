@@ -3,8 +3,9 @@
 # A digest of everything hif-clean writes, to show that a change of code leaves its outputs
 # byte for byte the same: the synthetic street (30 scans) and the real KITTI clips 01 and 08
 # (../shared/data/kitti, or $HIF_KITTI_DIR), each cleaned offline and online with the shipped
-# configs. Prints one line per output file (sha256, then the file) and, from summary.json, the
-# counts (timings left out: they differ from run to run).
+# configs, from a rawlog (kitti2rawlog) and straight from the sequence folder. Prints one line per
+# output file (sha256, then the file) and, from summary.json, the counts (timings left out: they
+# differ from run to run). Clouds are written in both formats (--format both).
 #
 #   bash scripts/output-digest.sh > before.txt     # on the old code
 #   bash scripts/output-digest.sh > after.txt      # on the new code
@@ -35,11 +36,14 @@ for name in "${inputs[@]}"; do
   "$BIN/kitti2rawlog" -i "$d/seq" -o "$d/scans.rawlog" --overwrite > /dev/null 2>&1
   for mode in offline online; do
     flag=""; [ $mode = online ] && flag=--online
-    rm -rf "${d:?}/$mode"
-    "$BIN/hif-clean" -i "$d/scans.rawlog" -o "$d/$mode" $flag -q > /dev/null
-    (cd "$d/$mode" && find . -type f ! -name summary.json | LC_ALL=C sort | xargs sha256sum) \
-      | sed "s|  \./|  $name/$mode/|"
-    grep -E '"(scans|points_in|points_kept|points_removed|points_invalid|pillars|intervals)"' \
-      "$d/$mode/summary.json" | tr -d ' ,' | sed "s|^|$name/$mode/summary.json |"
+    for input in rawlog folder; do
+      src=$d/scans.rawlog; out=$d/$mode; [ $input = folder ] && src=$d/seq out=$d/$mode-from-folder
+      rm -rf "${out:?}"
+      "$BIN/hif-clean" -i "$src" -o "$out" $flag --format both -q > /dev/null
+      (cd "$out" && find . -type f ! -name summary.json | LC_ALL=C sort | xargs sha256sum) \
+        | sed "s|  \./|  $name/${out##*/}/|"
+      grep -E '"(scans|points_in|points_kept|points_removed|points_invalid|pillars|intervals)"' \
+        "$out/summary.json" | tr -d ' ,' | sed "s|^|$name/${out##*/}/summary.json |"
+    done
   done
 done

@@ -4,9 +4,6 @@
  * @brief  Scans of a DynamicMap benchmark folder: pcd/NNNNNN.pcd, points in the world frame,
  *         sensor pose in VIEWPOINT.
  */
-#include <mrpt/maps/CPointsMapXYZI.h>
-#include <mrpt/obs/CObservationPointCloud.h>
-
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
@@ -27,11 +24,6 @@ public:
     explicit DynamicMapSource(const std::string& folder)
     {
         const fs::path pcd = fs::path(folder) / "pcd";
-        if (!fs::is_directory(pcd))
-            throw std::runtime_error("'" + folder +
-                                     "' is a folder without pcd/: not a DynamicMap benchmark "
-                                     "folder (hif-clean reads a rawlog, a .simplemap, or a "
-                                     "folder with pcd/NNNNNN.pcd)");
         for (const auto& e : fs::directory_iterator(pcd))
             if (e.path().extension() == ".pcd") files_.push_back(e.path().string());
         std::sort(files_.begin(), files_.end());
@@ -42,23 +34,18 @@ public:
     {
         if (pos_ >= files_.size()) return false;
         const std::string& file = files_[pos_++];
-        const io::PcdCloud pcd = io::readPcd(file);
+        io::PcdCloud pcd = io::readPcd(file);
         // The benchmark's clouds are in the world frame; the map takes sensor-frame points and
         // the sensor pose (VIEWPOINT), so bring them back to the sensor frame.
         const Eigen::Isometry3d inv = pcd.viewpoint.inverse();
-        auto cloud = mrpt::maps::CPointsMapXYZI::Create();
-        cloud->resize(pcd.size());
         for (std::size_t i = 0; i < pcd.size(); ++i)
         {
             const Eigen::Vector3d p = inv * Eigen::Vector3d(pcd.x[i], pcd.y[i], pcd.z[i]);
-            cloud->setPointFast(i, static_cast<float>(p.x()), static_cast<float>(p.y()),
-                                static_cast<float>(p.z()));
-            cloud->setPointIntensity(i, pcd.intensity[i]);
+            pcd.x[i] = static_cast<float>(p.x());
+            pcd.y[i] = static_cast<float>(p.y());
+            pcd.z[i] = static_cast<float>(p.z());
         }
-        auto obs = mrpt::obs::CObservationPointCloud::Create();
-        obs->sensorLabel = "LIDAR";
-        obs->pointcloud = cloud;
-        out.obs = obs;
+        out.obs = pointCloudObservation(pcd);
         out.robot_pose = mrpt::poses::CPose3D::FromHomogeneousMatrix(pcd.viewpoint.matrix());
         // NNNNNN.pcd is scan NNNNNN of its sequence.
         const std::string stem = fs::path(file).stem().string();

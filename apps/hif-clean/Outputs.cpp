@@ -33,9 +33,9 @@ void worldPoints(const hif::apps::Scan& scan, std::vector<float>& x, std::vector
 }  // namespace
 
 Outputs::Outputs(const std::string& dir, std::optional<std::size_t> first_frame,
-                 std::vector<std::string> static_files)
+                 std::vector<std::string> static_files, std::vector<std::string> removed_files)
     : kept_cloud_(std::move(static_files)),
-      removed_cloud_({dir + "/removed.ply", dir + "/removed.pcd"}),
+      removed_cloud_(std::move(removed_files)),
       pred_dir_(dir + "/predictions"),
       first_frame_(first_frame)
 {

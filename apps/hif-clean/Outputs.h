@@ -34,11 +34,11 @@ struct Timings
 class Outputs
 {
 public:
-    /** `static_files` receive the kept points; removed.{ply,pcd} in `dir` the others.
+    /** `static_files` receive the kept points, `removed_files` the others.
      *  Predictions are named after each scan's frame number when the input gives it (then
      *  `first_frame`, if given, must be the first scan's), else `first_frame` (default 0) + k. */
     Outputs(const std::string& dir, std::optional<std::size_t> first_frame,
-            std::vector<std::string> static_files);
+            std::vector<std::string> static_files, std::vector<std::string> removed_files);
 
     /** Classifies scan number `k` against `map` and writes its points and predictions. With
      *  `window` (offline), the free-space test uses it, the scan being its scan `k`; without,

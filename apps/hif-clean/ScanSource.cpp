@@ -5,6 +5,7 @@
  */
 #include "ScanSource.h"
 
+#include <mrpt/maps/CPointsMapXYZI.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationPointCloud.h>
@@ -24,12 +25,43 @@ bool isScan(const mrpt::obs::CObservation& obs)
            IS_CLASS(obs, CObservation2DRangeScan);
 }
 
-std::unique_ptr<ScanSource> openScanSource(const std::string& path)
+namespace
 {
-    if (fs::is_directory(path)) return openDynamicMapFolder(path);
+std::unique_ptr<ScanSource> openSource(const std::string& path)
+{
+    if (fs::is_directory(path))
+    {
+        if (fs::is_directory(fs::path(path) / "velodyne")) return openKittiFolder(path);
+        if (fs::is_directory(fs::path(path) / "pcd")) return openDynamicMapFolder(path);
+        throw std::runtime_error("'" + path +
+                                 "' is a folder with neither velodyne/ (a KITTI sequence) nor "
+                                 "pcd/ (a DynamicMap benchmark folder); hif-clean reads those, "
+                                 "a rawlog or a .simplemap");
+    }
     if (!fs::exists(path)) throw std::runtime_error("input '" + path + "' does not exist");
     if (fs::path(path).extension() == ".simplemap") return openSimpleMap(path);
     return openRawlog(path);
+}
+}  // namespace
+
+std::unique_ptr<ScanSource> openScanSource(const std::string& path)
+{
+    return readingAhead(openSource(path));
+}
+
+mrpt::obs::CObservation::Ptr pointCloudObservation(const io::Cloud& cloud)
+{
+    auto points = mrpt::maps::CPointsMapXYZI::Create();
+    points->resize(cloud.size());
+    for (std::size_t i = 0; i < cloud.size(); ++i)
+    {
+        points->setPointFast(i, cloud.x[i], cloud.y[i], cloud.z[i]);
+        points->setPointIntensity(i, cloud.intensity[i]);
+    }
+    auto obs = mrpt::obs::CObservationPointCloud::Create();
+    obs->sensorLabel = "LIDAR";
+    obs->pointcloud = points;
+    return obs;
 }
 
 void FrameScans::assign(const mrpt::obs::CSensoryFrame& frame, const mrpt::poses::CPose3D& pose)

@@ -3,8 +3,9 @@
  * @file   ScanSource.h
  * @brief  hif-clean's inputs, read one scan at a time behind one interface: an MRPT rawlog
  *         (a CObservationRobotPose before each scan, as kitti2rawlog writes; observations or
- *         sensory frames), a .simplemap, or a DynamicMap benchmark folder (pcd/NNNNNN.pcd in the
- *         world frame, sensor pose in VIEWPOINT).
+ *         sensory frames), a .simplemap, a KITTI sequence folder (velodyne/, poses.txt,
+ *         calib.txt), or a DynamicMap benchmark folder (pcd/NNNNNN.pcd in the world frame,
+ *         sensor pose in VIEWPOINT).
  */
 #pragma once
 
@@ -17,6 +18,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "hif/io/Cloud.h"
 
 namespace hif::apps
 {
@@ -46,13 +49,20 @@ public:
     [[nodiscard]] virtual bool isDynamicMapFolder() const { return false; }
 };
 
-/** Opens `path`: a folder with pcd/ is a DynamicMap folder, a *.simplemap file a simple map,
- *  anything else a rawlog (plain or gzip). Throws std::runtime_error naming it. */
+/** Opens `path`: a folder with velodyne/ is a KITTI sequence, a folder with pcd/ a DynamicMap
+ *  folder, a *.simplemap file a simple map, anything else a rawlog (plain or gzip). The source
+ *  reads one scan ahead on a second thread. Throws std::runtime_error naming it. */
 std::unique_ptr<ScanSource> openScanSource(const std::string& path);
 
 std::unique_ptr<ScanSource> openRawlog(const std::string& file);
 std::unique_ptr<ScanSource> openSimpleMap(const std::string& file);
 std::unique_ptr<ScanSource> openDynamicMapFolder(const std::string& folder);
+std::unique_ptr<ScanSource> openKittiFolder(const std::string& folder);
+/** `source`, its next scan read on a second thread while the caller works on the current one. */
+std::unique_ptr<ScanSource> readingAhead(std::unique_ptr<ScanSource> source);
+
+/** A CObservationPointCloud (sensor label LIDAR) holding `cloud` as a CPointsMapXYZI. */
+[[nodiscard]] mrpt::obs::CObservation::Ptr pointCloudObservation(const io::Cloud& cloud);
 
 /** Whether hif-clean can insert and classify this observation type. */
 [[nodiscard]] bool isScan(const mrpt::obs::CObservation& obs);

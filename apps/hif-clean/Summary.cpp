@@ -62,9 +62,9 @@ void writeSummary(const std::string& file, const SummaryInfo& info,
     if (!f) throw std::runtime_error("Error writing to target file '" + file + "'");
 }
 
-void printReport(const std::string& tag, const std::string& out_dir, const std::string& dm_output,
-                 bool online, const hif::CHeightIntervalMap& map, const Outputs& out,
-                 const Timings& t)
+void printReport(const std::string& tag, const std::string& out_dir, const std::string& format,
+                 const std::string& dm_output, bool online, const hif::CHeightIntervalMap& map,
+                 const Outputs& out, const Timings& t)
 {
     const auto per_scan = hif::apps::timeStats(t.scan_ms);
     const auto cls = hif::apps::timeStats(out.classify_ms);
@@ -86,6 +86,7 @@ void printReport(const std::string& tag, const std::string& out_dir, const std::
         << "; classify median " << cls.median << "\n"
         << tag << " total " << t.total_s << " s, peak memory " << hif::apps::peakRssMiB()
         << " MiB\n"
-        << tag << " wrote " << out_dir << "/{static_map,removed}.{ply,pcd}, predictions/, "
+        << tag << " wrote " << out_dir << "/{static_map,removed}."
+        << (format == "both" ? "{ply,pcd}" : format) << ", predictions/, "
         << "map.hifmap, summary.json" << (dm_output.empty() ? "" : " and " + dm_output) << "\n";
 }

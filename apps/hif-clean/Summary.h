@@ -21,6 +21,6 @@ struct SummaryInfo
 void writeSummary(const std::string& file, const SummaryInfo& info,
                   const hif::CHeightIntervalMap& map, const Outputs& out, const Timings& t);
 
-void printReport(const std::string& tag, const std::string& out_dir, const std::string& dm_output,
-                 bool online, const hif::CHeightIntervalMap& map, const Outputs& out,
-                 const Timings& t);
+void printReport(const std::string& tag, const std::string& out_dir, const std::string& format,
+                 const std::string& dm_output, bool online, const hif::CHeightIntervalMap& map,
+                 const Outputs& out, const Timings& t);

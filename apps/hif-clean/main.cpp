@@ -12,6 +12,8 @@
 #include <mrpt/maps/CMultiMetricMap.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <malloc.h>
+
 #include <deque>
 #include <filesystem>
 #include <fstream>
@@ -57,15 +59,16 @@ struct Cli
         "hif-clean: removes moving objects from a LiDAR sequence with Height Interval "
         "Filtering. Inserts every scan at its pose into the maps of an .ini (which must "
         "define a CHeightIntervalMap), classifies every point, and writes into the output "
-        "folder: static_map.{ply,pcd} and removed.{ply,pcd} (world frame, x y z intensity), "
-        "predictions/NNNNNN.label (9 = static, 251 = moving, one per input point in input "
-        "order), map.hifmap (the serialized map) and summary.json.",
+        "folder: static_map and removed (world frame, x y z intensity; .ply, .pcd or both: "
+        "--format), predictions/NNNNNN.label (9 = static, 251 = moving, one per input point "
+        "in input order), map.hifmap (the serialized map) and summary.json.",
         ' ', "0.1"};
     TCLAP::ValueArg<std::string> input{
         "i",
         "input",
         "Input: an MRPT rawlog with a CObservationRobotPose before each scan (as kitti2rawlog "
-        "writes), a .simplemap, or a DynamicMap benchmark folder (pcd/NNNNNN.pcd)",
+        "writes), a .simplemap, a KITTI sequence folder (velodyne/, poses.txt, calib.txt; "
+        "SemanticKITTI layout), or a DynamicMap benchmark folder (pcd/NNNNNN.pcd)",
         true,
         "",
         "in.rawlog|in.simplemap|folder",
@@ -80,6 +83,18 @@ struct Cli
         false,
         "",
         "config.ini",
+        cmd};
+    std::vector<std::string> formats{"ply", "pcd", "both"};
+    TCLAP::ValuesConstraint<std::string> format_values{formats};
+    TCLAP::ValueArg<std::string> format{
+        "",
+        "format",
+        "Point-cloud format of static_map and removed: ply (binary, read by MRPT, PCL, "
+        "CloudCompare, MeshLab, Open3D), pcd (binary) or both (default: ply). A DynamicMap "
+        "folder's hif_output.pcd is written in any case",
+        false,
+        "ply",
+        &format_values,
         cmd};
     TCLAP::ValueArg<std::string> section{
         "",     "section", "Section of the .ini with the map list (default: map)", false, "map",
@@ -283,13 +298,22 @@ int runClean(Cli& cli)
     printHeader(run);
 
     const std::string dir = run.staged->path();
-    std::vector<std::string> static_files{dir + "/static_map.ply", dir + "/static_map.pcd"};
+    const std::string& format = cli.format.getValue();
+    std::vector<std::string> extensions;
+    if (format != "pcd") extensions.push_back(".ply");
+    if (format != "ply") extensions.push_back(".pcd");
+    std::vector<std::string> static_files, removed_files;
+    for (const std::string& ext : extensions)
+    {
+        static_files.push_back(dir + "/static_map" + ext);
+        removed_files.push_back(dir + "/removed" + ext);
+    }
     if (run.staged_dm) static_files.push_back(run.staged_dm->path());  // the benchmark's
     std::optional<std::size_t> first_frame;
     if (cli.first_frame.isSet())
         first_frame = static_cast<std::size_t>(
             hif::apps::flagInRange(cli.first_frame.getValue(), "--first-frame", 0, 999999));
-    Outputs out(dir, first_frame, std::move(static_files));
+    Outputs out(dir, first_frame, std::move(static_files), std::move(removed_files));
     Timings t;
     std::vector<hif::apps::Scan> held = insertAll(run, out, t);
     if (!run.online) classifyAll(run, held, out, t.scans);
@@ -305,12 +329,17 @@ int runClean(Cli& cli)
     writeSummary(dir + "/summary.json", info, *run.hif_map, out, t);
     run.staged->commit();
     if (run.staged_dm) run.staged_dm->commit();
-    printReport(kTag, run.out_dir, run.dm_output, run.online, *run.hif_map, out, t);
+    printReport(kTag, run.out_dir, format, run.dm_output, run.online, *run.hif_map, out, t);
     return 0;
 }
 }  // namespace
 
 int main(int argc, char** argv)
 {
+    // Every scan allocates and frees the same few buffers of megabytes (points, labels, range
+    // images). By default glibc maps each one afresh and unmaps it when freed, and every page is
+    // then faulted in and zeroed again, scan after scan; kept in the heap they are reused.
+    mallopt(M_MMAP_THRESHOLD, 256 << 20);
+    mallopt(M_TRIM_THRESHOLD, 512 << 20);
     return hif::apps::cliMain<Cli>(kTag.c_str(), argc, argv, runClean);
 }

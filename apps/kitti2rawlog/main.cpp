@@ -3,7 +3,8 @@
  * @file   kitti2rawlog/main.cpp
  * @brief  Converts a KITTI odometry sequence (SemanticKITTI layout) into an MRPT rawlog: for
  *         each scan, a CObservationRobotPose with its world pose, then a CObservationPointCloud
- *         (CPointsMapXYZI, intensity kept), both stamped with the scan's time.
+ *         (CPointsMapXYZI, intensity kept), both stamped with the scan's time. With
+ *         --dynamicmap, into the DynamicMap benchmark layout instead.
  */
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 #include <mrpt/io/CFileGZOutputStream.h>
@@ -22,6 +23,7 @@
 #include "hif/apps/Cli.h"
 #include "hif/apps/FrameComment.h"
 #include "hif/apps/Staged.h"
+#include "hif/io/CloudFiles.h"
 #include "hif/io/KittiSequence.h"
 #include "hif/io/Labels.h"
 
@@ -39,8 +41,10 @@ struct Cli
         ' ', "0.1"};
     TCLAP::ValueArg<std::string> input{
         "i", "input", "KITTI sequence folder (e.g. .../sequences/08)", true, "", "folder", cmd};
-    TCLAP::ValueArg<std::string> output{"o",          "output", "Output rawlog file", true, "",
-                                        "out.rawlog", cmd};
+    TCLAP::ValueArg<std::string> output{
+        "o",  "output", "Output rawlog file (with --dynamicmap: output folder)",
+        true, "",       "out.rawlog|folder",
+        cmd};
     TCLAP::ValueArg<long long> first{"",  "first", "First scan to convert (default: 0)", false, 0,
                                      "N", cmd};
     TCLAP::ValueArg<long long> last{
@@ -59,8 +63,41 @@ struct Cli
                                   0,
                                   "0-9",
                                   cmd};
-    TCLAP::SwitchArg overwrite{"", "overwrite", "Replace the output file if it exists", cmd};
+    TCLAP::SwitchArg dynamicmap{
+        "", "dynamicmap",
+        "Write the DynamicMap benchmark layout instead of a rawlog: <output>/pcd/NNNNNN.pcd "
+        "(binary PCD, x y z intensity in the world frame, the LiDAR pose in VIEWPOINT), what "
+        "that benchmark's methods (DUFOMap, OctoMap, ...) and hif-clean read",
+        cmd};
+    TCLAP::SwitchArg overwrite{"", "overwrite", "Replace the output if it exists", cmd};
 };
+
+/** The scans first..last as <dir>/pcd/NNNNNN.pcd, points in the world frame. */
+void writeDynamicMap(const hif::io::KittiSequence& seq, std::size_t first, std::size_t last,
+                     const std::string& dir, bool overwrite, const std::string& tag)
+{
+    hif::apps::StagedFolder staged(hif::apps::cleanDir(dir), {"pcd"}, overwrite, "--overwrite");
+    const std::string pcd_dir = staged.path() + "/pcd";
+    hif::apps::makeDirs(pcd_dir);
+    hif::apps::Progress progress(tag, "converting", last - first + 1);
+    for (std::size_t i = first; i <= last; ++i)
+    {
+        const hif::io::Cloud scan = seq.readScan(i);
+        const Eigen::Isometry3d& pose = seq.pose(i);
+        hif::io::CloudWriter pcd({pcd_dir + "/" + hif::io::frameName(i) + ".pcd"});
+        pcd.setViewpoint(pose);
+        for (std::size_t k = 0; k < scan.size(); ++k)
+        {
+            const Eigen::Vector3d w = pose * Eigen::Vector3d(scan.x[k], scan.y[k], scan.z[k]);
+            pcd.add(static_cast<float>(w.x()), static_cast<float>(w.y()), static_cast<float>(w.z()),
+                    scan.intensity[k]);
+        }
+        pcd.close();
+        progress.update(i - first + 1);
+    }
+    progress.finish();
+    staged.commit();
+}
 
 int run(Cli& cli)
 {
@@ -83,6 +120,18 @@ int run(Cli& cli)
     if (level < 0 || level > 9)
         throw std::runtime_error("--compress-level " + std::to_string(level) + " is not in 0-9");
     const std::string out_file = cli.output.getValue();
+    if (cli.dynamicmap.getValue())
+    {
+        if (cli.external.getValue() || cli.compress.isSet())
+            throw std::runtime_error(
+                "--external and --compress-level apply to rawlogs, not to "
+                "--dynamicmap");
+        std::cout << tag << " sequence '" << seq.dir() << "': scans " << first << ".." << last
+                  << " of " << n << " into the DynamicMap layout '" << out_file << "/pcd'\n";
+        writeDynamicMap(seq, first, last, out_file, cli.overwrite.getValue(), tag);
+        std::cout << tag << " done: " << (last - first + 1) << " scans\n";
+        return 0;
+    }
     // Written aside and renamed when complete: a failed conversion leaves no partial rawlog.
     hif::apps::StagedFile staged(out_file, cli.overwrite.getValue(), "--overwrite");
 

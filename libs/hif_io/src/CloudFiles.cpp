@@ -5,10 +5,16 @@
  */
 #include "hif/io/CloudFiles.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
@@ -23,6 +29,67 @@ bool endsWith(const std::string& s, const std::string& suffix)
     return s.size() >= suffix.size() &&
            s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
+/** Writes `header` then the whole of file `body` into `file`, the copy done by the kernel
+ *  (copy_file_range) where it can, else through a large buffer. */
+void writeHeaderAndBody(const std::string& file, const std::string& header, const std::string& body)
+{
+    const int in = ::open(body.c_str(), O_RDONLY | O_CLOEXEC);
+    if (in < 0) throwFileError(body, std::string("cannot be read: ") + std::strerror(errno));
+    const int out = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (out < 0)
+    {
+        ::close(in);
+        throwFileError(file, std::string("cannot be created: ") + std::strerror(errno));
+    }
+    const auto fail = [&](const std::string& what)
+    {
+        const std::string why = std::strerror(errno);
+        ::close(in);
+        ::close(out);
+        throwFileError(file, what + ": " + why);
+    };
+    const auto writeAll = [&](const char* p, std::size_t n)
+    {
+        while (n > 0)
+        {
+            const ssize_t w = ::write(out, p, n);
+            if (w < 0 && errno == EINTR) continue;
+            if (w <= 0) fail("could not be written (disk full?)");
+            p += w;
+            n -= static_cast<std::size_t>(w);
+        }
+    };
+    writeAll(header.data(), header.size());
+    bool kernel_copy = true;
+    std::vector<char> buf;
+    for (;;)
+    {
+        ssize_t n = 0;
+        if (kernel_copy)
+        {
+            n = ::copy_file_range(in, nullptr, out, nullptr, std::size_t{1} << 30, 0);
+            // Not supported here (another file system, an old kernel): copy through memory.
+            if (n < 0 &&
+                (errno == EXDEV || errno == ENOSYS || errno == EINVAL || errno == EOPNOTSUPP))
+            {
+                kernel_copy = false;
+                continue;
+            }
+            if (n < 0 && errno != EINTR) fail("could not be written (disk full?)");
+        }
+        else
+        {
+            buf.resize(std::size_t{1} << 22);
+            n = ::read(in, buf.data(), buf.size());
+            if (n < 0 && errno != EINTR) fail("could not be written: its body cannot be read");
+            if (n > 0) writeAll(buf.data(), static_cast<std::size_t>(n));
+        }
+        if (n == 0) break;
+    }
+    ::close(in);
+    if (::close(out) != 0) throwFileError(file, "could not be written (disk full?)");
+}
+
 }  // namespace
 
 CloudWriter::CloudWriter(std::vector<std::string> files) : files_(std::move(files))
@@ -58,6 +125,17 @@ void CloudWriter::add(float x, float y, float z, float intensity)
     }
 }
 
+std::string CloudWriter::viewpointText() const
+{
+    if (viewpoint_.matrix() == Eigen::Matrix4d::Identity()) return "0 0 0 1 0 0 0";
+    const Eigen::Quaterniond q(viewpoint_.linear());
+    const Eigen::Vector3d& t = viewpoint_.translation();
+    std::ostringstream s;
+    s << std::setprecision(17) << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.w() << ' '
+      << q.x() << ' ' << q.y() << ' ' << q.z();
+    return s.str();
+}
+
 void CloudWriter::close()
 {
     if (!f_) return;
@@ -69,22 +147,20 @@ void CloudWriter::close()
 
     for (const std::string& file : files_)
     {
-        std::ofstream out(file, std::ios::binary | std::ios::trunc);
-        if (!out) throwFileError(file, "cannot be created");
+        std::string header;
         if (endsWith(file, ".ply"))
-            out << "ply\nformat binary_little_endian 1.0\ncomment written by hif\nelement vertex "
-                << count_
-                << "\nproperty float x\nproperty float y\nproperty float z\nproperty float "
-                   "intensity\nend_header\n";
+            header =
+                "ply\nformat binary_little_endian 1.0\ncomment written by hif\nelement vertex " +
+                std::to_string(count_) +
+                "\nproperty float x\nproperty float y\nproperty float z\nproperty float "
+                "intensity\nend_header\n";
         else
-            out << "# .PCD v0.7 - Point Cloud Data file format (written by hif)\nVERSION 0.7\n"
-                   "FIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH "
-                << count_ << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << count_
-                << "\nDATA binary\n";
-        std::ifstream body(part_, std::ios::binary);
-        if (count_ > 0) out << body.rdbuf();
-        out.close();
-        if (!out) throwFileError(file, "could not be written (disk full?)");
+            header =
+                "# .PCD v0.7 - Point Cloud Data file format (written by hif)\nVERSION 0.7\n"
+                "FIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH " +
+                std::to_string(count_) + "\nHEIGHT 1\nVIEWPOINT " + viewpointText() + "\nPOINTS " +
+                std::to_string(count_) + "\nDATA binary\n";
+        writeHeaderAndBody(file, header, part_);
     }
     std::remove(part_.c_str());
 }
@@ -187,17 +263,21 @@ PcdCloud readPcd(const std::string& file)
     out.intensity.assign(points, 0.0f);
     if (data == "binary")
     {
-        std::vector<char> rec(stride);
-        for (std::size_t p = 0; p < points; ++p)
+        // One read of the whole body, then the fields picked out of each record.
+        const std::size_t bytes = points * stride;
+        const std::unique_ptr<char[]> body(new char[bytes]);  // not zeroed: read over
+        if (!f.read(body.get(), static_cast<std::streamsize>(bytes)))
+            throwFileError(file, "is truncated: POINTS says " + std::to_string(points) +
+                                     ", found " + std::to_string(f.gcount() / stride));
+        const auto pick = [&](int field, std::vector<float>& to)
         {
-            if (!f.read(rec.data(), static_cast<std::streamsize>(stride)))
-                throwFileError(file, "is truncated: POINTS says " + std::to_string(points) +
-                                         ", found " + std::to_string(p));
-            std::memcpy(&out.x[p], rec.data() + offset[ix], 4);
-            std::memcpy(&out.y[p], rec.data() + offset[iy], 4);
-            std::memcpy(&out.z[p], rec.data() + offset[iz], 4);
-            if (ii >= 0) std::memcpy(&out.intensity[p], rec.data() + offset[ii], 4);
-        }
+            const char* src = body.get() + offset[field];
+            for (std::size_t p = 0; p < points; ++p, src += stride) std::memcpy(&to[p], src, 4);
+        };
+        pick(ix, out.x);
+        pick(iy, out.y);
+        pick(iz, out.z);
+        if (ii >= 0) pick(ii, out.intensity);
     }
     else
     {

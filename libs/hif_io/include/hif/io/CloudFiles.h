@@ -30,17 +30,22 @@ public:
     CloudWriter(const CloudWriter&) = delete;
     CloudWriter& operator=(const CloudWriter&) = delete;
 
+    /** The sensor pose a .pcd file states in its VIEWPOINT line (default: identity). */
+    void setViewpoint(const Eigen::Isometry3d& viewpoint) { viewpoint_ = viewpoint; }
     void add(float x, float y, float z, float intensity);
     /** Writes the files; they are complete only after this. */
     void close();
     [[nodiscard]] std::size_t count() const { return count_; }
 
 private:
+    [[nodiscard]] std::string viewpointText() const;
+
     std::vector<std::string> files_;
     std::string part_;
     std::FILE* f_ = nullptr;
     std::size_t count_ = 0;
     std::vector<float> buf_;
+    Eigen::Isometry3d viewpoint_ = Eigen::Isometry3d::Identity();
 };
 
 /** A point cloud read from a PCD file: coordinates, intensity (0 when absent) and VIEWPOINT. */
