@@ -25,6 +25,7 @@ struct Timings
     std::vector<double> insert_ms;
     std::vector<double> scan_ms;  ///< insert, or insert + classify online
     std::size_t scans = 0;
+    std::size_t points = 0;  ///< in the scans inserted, where their type tells without converting
     double files_ms = 0;
     double total_s = 0;
 };
@@ -45,6 +46,9 @@ public:
      *  the map's own window (online). */
     void classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::apps::Scan& scan,
                           std::size_t k, const hif::ScanWindow* window = nullptr);
+    /** Before the first scan is classified: about how many points the kept cloud will get (a
+     *  guess: right to the number of digits, it saves a copy of that file). */
+    void expectKept(std::size_t points) { kept_cloud_.expectCount(points); }
     /** Completes the cloud files. */
     void close();
 

@@ -3,9 +3,13 @@
  * @file   ReadAhead.cpp
  * @brief  A scan source that reads its next scan on a second thread while the caller inserts
  *         or classifies the current one (reading and parsing a scan costs about as much as
- *         inserting it).
+ *         inserting it). One reader thread for the whole run, so that its buffers are reused.
  */
-#include <future>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <utility>
 
 #include "ScanSource.h"
 
@@ -16,18 +20,31 @@ namespace
 class ReadAhead : public ScanSource
 {
 public:
-    explicit ReadAhead(std::unique_ptr<ScanSource> source) : source_(std::move(source)) {}
-    ~ReadAhead() override { settle(); }
+    explicit ReadAhead(std::unique_ptr<ScanSource> source)
+        : source_(std::move(source)), reader_([this] { readLoop(); })
+    {
+    }
+
+    ~ReadAhead() override
+    {
+        settle();
+        {
+            const std::lock_guard<std::mutex> lock(mutex_);
+            stop_ = true;
+        }
+        cv_.notify_all();
+        reader_.join();
+    }
     ReadAhead(const ReadAhead&) = delete;
     ReadAhead& operator=(const ReadAhead&) = delete;
 
     bool next(Scan& out) override
     {
-        if (!pending_.valid()) start();
-        std::optional<Scan> scan = pending_.get();  // rethrows what the reader threw
+        if (!asked_) ask();
+        std::optional<Scan> scan = take();  // rethrows what the reader threw
         if (!scan) return false;
         out = std::move(*scan);
-        start();
+        ask();
         return true;
     }
 
@@ -40,39 +57,85 @@ public:
     [[nodiscard]] std::size_t knownSize() const override { return source_->knownSize(); }
     [[nodiscard]] std::size_t skippedObjects() const override
     {
-        if (pending_.valid()) pending_.wait();  // the reader counts as it reads
+        // The reader counts as it reads: wait until it is idle.
+        std::unique_lock<std::mutex> lock(mutex_);
+        cv_.wait(lock, [this] { return !asked_ || done_; });
         return source_->skippedObjects();
     }
     [[nodiscard]] bool isDynamicMapFolder() const override { return source_->isDynamicMapFolder(); }
 
 private:
-    void start()
+    /** Asks the reader for the next scan. */
+    void ask()
     {
-        pending_ = std::async(std::launch::async,
-                              [this]
-                              {
-                                  Scan s;
-                                  return source_->next(s) ? std::optional<Scan>(std::move(s))
-                                                          : std::nullopt;
-                              });
+        {
+            const std::lock_guard<std::mutex> lock(mutex_);
+            asked_ = true;
+            done_ = false;
+        }
+        cv_.notify_all();
+    }
+
+    /** Waits for the scan asked for. */
+    std::optional<Scan> take()
+    {
+        std::unique_lock<std::mutex> lock(mutex_);
+        cv_.wait(lock, [this] { return done_; });
+        asked_ = false;
+        if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
+        return std::exchange(result_, std::nullopt);
     }
 
     /** Waits for a read under way and forgets it (and what it may have thrown: the scan after
      *  the last one asked for is never handed out). */
     void settle()
     {
-        if (!pending_.valid()) return;
+        if (!asked_) return;
         try
         {
-            pending_.get();
+            take();
         }
         catch (const std::exception&)
         {
         }
     }
 
+    void readLoop()
+    {
+        std::unique_lock<std::mutex> lock(mutex_);
+        for (;;)
+        {
+            cv_.wait(lock, [this] { return stop_ || (asked_ && !done_); });
+            if (stop_) return;
+            lock.unlock();
+            std::optional<Scan> scan;
+            std::exception_ptr error;
+            try
+            {
+                Scan s;
+                if (source_->next(s)) scan = std::move(s);
+            }
+            catch (...)
+            {
+                error = std::current_exception();
+            }
+            lock.lock();
+            result_ = std::move(scan);
+            error_ = error;
+            done_ = true;
+            cv_.notify_all();
+        }
+    }
+
     std::unique_ptr<ScanSource> source_;
-    std::future<std::optional<Scan>> pending_;
+    mutable std::mutex mutex_;
+    mutable std::condition_variable cv_;
+    bool asked_ = false;  ///< a scan was asked for and not yet taken
+    bool done_ = false;   ///< the reader has finished the scan asked for
+    bool stop_ = false;
+    std::optional<Scan> result_;
+    std::exception_ptr error_;
+    std::thread reader_;  ///< last: started once the rest is initialized
 };
 }  // namespace
 

@@ -10,6 +10,7 @@
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/maps/CMultiMetricMap.h>
+#include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include <malloc.h>
@@ -213,6 +214,13 @@ void printHeader(const Run& run)
               << kTag << " output : " << run.out_dir << "\n";
 }
 
+/** Points of a scan when its type says so without converting it (a point cloud), else 0. */
+std::size_t pointsOf(const mrpt::obs::CObservation& obs)
+{
+    const auto* pc = dynamic_cast<const mrpt::obs::CObservationPointCloud*>(&obs);
+    return pc && pc->pointcloud ? pc->pointcloud->size() : 0;
+}
+
 /** Pass 1: every scan inserted (and, online, classified right after). Returns the scans held
  *  for pass 2 with --hold-scans. */
 std::vector<hif::apps::Scan> insertAll(Run& run, Outputs& out, Timings& t)
@@ -228,6 +236,7 @@ std::vector<hif::apps::Scan> insertAll(Run& run, Outputs& out, Timings& t)
         run.maps.insertObservation(*scan.obs, scan.robot_pose);
         const double ms = msSince(t0);
         t.insert_ms.push_back(ms);
+        t.points += pointsOf(*scan.obs);
         if (run.online)
         {
             out.classifyAndWrite(*run.hif_map, scan, t.scans);
@@ -316,7 +325,11 @@ int runClean(Cli& cli)
     Outputs out(dir, first_frame, std::move(static_files), std::move(removed_files));
     Timings t;
     std::vector<hif::apps::Scan> held = insertAll(run, out, t);
-    if (!run.online) classifyAll(run, held, out, t.scans);
+    if (!run.online)
+    {
+        out.expectKept(t.points);  // most points are kept
+        classifyAll(run, held, out, t.scans);
+    }
 
     const auto t_files = Clock::now();
     out.close();

@@ -10,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,9 +20,11 @@ namespace hif::io
 {
 /** Writes the same points, x y z intensity (float32 each), to one or more files, each a
  *  binary little-endian PLY or a binary PCD chosen by its extension (.ply or .pcd). Both
- *  formats have the same body, so it is written once, to "<first file>.part"; close() writes
- *  each file's header (which needs the count) and the body. Throws std::runtime_error naming
- *  the file on any I/O failure. */
+ *  formats have the same body, so it is written once: into the first file, after the room for
+ *  its header, when expectCount() says how many digits the count will have; otherwise into
+ *  "<first file>.part". close() writes each header (which needs the count) and copies the body
+ *  behind the other headers. Throws std::runtime_error naming the file on any I/O failure; the
+ *  files are complete only after close(), and a writer destroyed before removes its body. */
 class CloudWriter
 {
 public:
@@ -30,19 +33,29 @@ public:
     CloudWriter(const CloudWriter&) = delete;
     CloudWriter& operator=(const CloudWriter&) = delete;
 
-    /** The sensor pose a .pcd file states in its VIEWPOINT line (default: identity). */
+    /** The sensor pose a .pcd file states in its VIEWPOINT line (default: identity); set it
+     *  before the first point. */
     void setViewpoint(const Eigen::Isometry3d& viewpoint) { viewpoint_ = viewpoint; }
+    /** A guess of the final count, before the first point: right to the number of digits, it
+     *  saves a copy of the body (wrong, it costs the copy it would have saved). */
+    void expectCount(std::size_t count);
     void add(float x, float y, float z, float intensity);
     /** Writes the files; they are complete only after this. */
     void close();
     [[nodiscard]] std::size_t count() const { return count_; }
 
 private:
+    void open();
+    void flush();
     [[nodiscard]] std::string viewpointText() const;
+    [[nodiscard]] std::string header(const std::string& file, std::size_t count) const;
 
     std::vector<std::string> files_;
-    std::string part_;
+    std::optional<std::size_t> expected_;
+    std::string body_file_;        ///< the file the body is written to
+    std::size_t body_offset_ = 0;  ///< where the body starts in it
     std::FILE* f_ = nullptr;
+    bool closed_ = false;
     std::size_t count_ = 0;
     std::vector<float> buf_;
     Eigen::Isometry3d viewpoint_ = Eigen::Isometry3d::Identity();

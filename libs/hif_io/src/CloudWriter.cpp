@@ -1,0 +1,225 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   CloudWriter.cpp
+ * @brief  Streaming binary PLY/PCD writer.
+ */
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <iomanip>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include "hif/io/CloudFiles.h"
+#include "hif/io/FileError.h"
+
+namespace hif::io
+{
+namespace
+{
+bool endsWith(const std::string& s, const std::string& suffix)
+{
+    return s.size() >= suffix.size() &&
+           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+/** An open file descriptor, closed when it goes. */
+struct Fd
+{
+    int fd = -1;
+    ~Fd()
+    {
+        if (fd >= 0) ::close(fd);
+    }
+};
+
+void writeAll(int fd, const char* p, std::size_t n, const std::string& file)
+{
+    while (n > 0)
+    {
+        const ssize_t w = ::write(fd, p, n);
+        if (w < 0 && errno == EINTR) continue;
+        if (w <= 0)
+            throwFileError(
+                file, std::string("could not be written (disk full?): ") + std::strerror(errno));
+        p += w;
+        n -= static_cast<std::size_t>(w);
+    }
+}
+
+/** Writes `header`, then `length` bytes of file `from` starting at `offset`, into `file`: the
+ *  copy done by the kernel (copy_file_range) where it can, else through a large buffer. */
+void writeHeaderAndCopy(const std::string& file, const std::string& header, const std::string& from,
+                        off_t offset, std::size_t length)
+{
+    Fd in{::open(from.c_str(), O_RDONLY | O_CLOEXEC)};
+    if (in.fd < 0) throwFileError(from, std::string("cannot be read: ") + std::strerror(errno));
+    Fd out{::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644)};
+    if (out.fd < 0) throwFileError(file, std::string("cannot be created: ") + std::strerror(errno));
+    writeAll(out.fd, header.data(), header.size(), file);
+    bool kernel_copy = true;
+    std::vector<char> buf;
+    while (length > 0)
+    {
+        ssize_t n = 0;
+        if (kernel_copy)
+        {
+            n = ::copy_file_range(in.fd, &offset, out.fd, nullptr, length, 0);
+            // Not supported here (another file system, an old kernel): copy through memory.
+            if (n < 0 &&
+                (errno == EXDEV || errno == ENOSYS || errno == EINVAL || errno == EOPNOTSUPP))
+            {
+                kernel_copy = false;
+                continue;
+            }
+        }
+        else
+        {
+            buf.resize(std::min(length, std::size_t{1} << 22));
+            n = ::pread(in.fd, buf.data(), buf.size(), offset);
+            if (n > 0)
+            {
+                writeAll(out.fd, buf.data(), static_cast<std::size_t>(n), file);
+                offset += n;
+            }
+        }
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0)
+            throwFileError(file, "could not be written (" + from + " ended early or " +
+                                     std::strerror(errno) + ")");
+        length -= static_cast<std::size_t>(n);
+    }
+    if (::close(std::exchange(out.fd, -1)) != 0)
+        throwFileError(file, "could not be written (disk full?)");
+}
+}  // namespace
+
+CloudWriter::CloudWriter(std::vector<std::string> files) : files_(std::move(files))
+{
+    if (files_.empty()) throw std::invalid_argument("CloudWriter: no output file");
+    for (const std::string& file : files_)
+        if (!endsWith(file, ".pcd") && !endsWith(file, ".ply"))
+            throwFileError(file, "has an unknown point-cloud extension (use .ply or .pcd)");
+    buf_.reserve(4 * 8192);
+}
+
+CloudWriter::~CloudWriter()
+{
+    if (f_)
+    {
+        std::fclose(f_);
+        std::remove(body_file_.c_str());
+    }
+}
+
+void CloudWriter::expectCount(std::size_t count)
+{
+    if (f_ || closed_) throw std::logic_error("CloudWriter::expectCount() after the first point");
+    expected_ = count;
+}
+
+void CloudWriter::open()
+{
+    // With a count expected, the body goes straight into the first file after the room its
+    // header will take; otherwise into "<first file>.part", copied behind each header.
+    if (expected_)
+    {
+        body_file_ = files_.front();
+        body_offset_ = header(files_.front(), *expected_).size();
+    }
+    else
+    {
+        body_file_ = files_.front() + ".part";
+        body_offset_ = 0;
+    }
+    f_ = std::fopen(body_file_.c_str(), "wb");
+    if (!f_) throwFileError(body_file_, std::string("cannot be created: ") + std::strerror(errno));
+    if (body_offset_ > 0 && std::fseek(f_, static_cast<long>(body_offset_), SEEK_SET) != 0)
+        throwFileError(body_file_, std::string("cannot be written: ") + std::strerror(errno));
+}
+
+void CloudWriter::flush()
+{
+    if (!buf_.empty() && std::fwrite(buf_.data(), sizeof(float), buf_.size(), f_) != buf_.size())
+        throwFileError(body_file_, "could not be written (disk full?)");
+    buf_.clear();
+}
+
+void CloudWriter::add(float x, float y, float z, float intensity)
+{
+    if (!f_) open();
+    buf_.insert(buf_.end(), {x, y, z, intensity});
+    ++count_;
+    if (buf_.size() >= 4 * 8192) flush();
+}
+
+std::string CloudWriter::viewpointText() const
+{
+    if (viewpoint_.matrix() == Eigen::Matrix4d::Identity()) return "0 0 0 1 0 0 0";
+    const Eigen::Quaterniond q(viewpoint_.linear());
+    const Eigen::Vector3d& t = viewpoint_.translation();
+    std::ostringstream s;
+    s << std::setprecision(17) << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.w() << ' '
+      << q.x() << ' ' << q.y() << ' ' << q.z();
+    return s.str();
+}
+
+std::string CloudWriter::header(const std::string& file, std::size_t count) const
+{
+    const std::string n = std::to_string(count);
+    if (endsWith(file, ".ply"))
+        return "ply\nformat binary_little_endian 1.0\ncomment written by hif\nelement vertex " + n +
+               "\nproperty float x\nproperty float y\nproperty float z\nproperty float "
+               "intensity\nend_header\n";
+    return "# .PCD v0.7 - Point Cloud Data file format (written by hif)\nVERSION 0.7\n"
+           "FIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH " +
+           n + "\nHEIGHT 1\nVIEWPOINT " + viewpointText() + "\nPOINTS " + n + "\nDATA binary\n";
+}
+
+void CloudWriter::close()
+{
+    if (closed_) return;
+    if (!f_) open();  // no point: the files still get their headers
+    flush();
+    const bool failed = std::fclose(f_) != 0;
+    f_ = nullptr;
+    closed_ = true;
+    if (failed) throwFileError(body_file_, "could not be closed (disk full?)");
+
+    const std::size_t bytes = count_ * 4 * sizeof(float);
+    std::size_t first = 0;  // the files still to write
+    if (expected_)
+    {
+        const std::string h = header(files_.front(), count_);
+        if (h.size() == body_offset_)
+        {
+            // The room left was right: the header goes in front of the body, and the first file
+            // is complete.
+            Fd fd{::open(body_file_.c_str(), O_WRONLY | O_CLOEXEC)};
+            if (fd.fd < 0 || ::pwrite(fd.fd, h.data(), h.size(), 0) != ssize_t(h.size()) ||
+                ::close(std::exchange(fd.fd, -1)) != 0)
+                throwFileError(body_file_,
+                               std::string("could not be written: ") + std::strerror(errno));
+            first = 1;
+        }
+        else
+        {
+            // Another count of digits than expected: the body is moved behind the right header.
+            const std::string part = files_.front() + ".part";
+            if (std::rename(body_file_.c_str(), part.c_str()) != 0)
+                throwFileError(body_file_,
+                               std::string("cannot be renamed: ") + std::strerror(errno));
+            body_file_ = part;
+        }
+    }
+    for (std::size_t k = first; k < files_.size(); ++k)
+        writeHeaderAndCopy(files_[k], header(files_[k], count_), body_file_,
+                           static_cast<off_t>(body_offset_), bytes);
+    if (first == 0) std::remove(body_file_.c_str());
+}
+
+}  // namespace hif::io
