@@ -1,13 +1,78 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
-# Builds (Release) and runs the benchmark suite on real KITTI scans (sequence 08 of
-# ../shared/data/kitti, or $HIF_KITTI_DIR/sequences/08, or the folder in $HIF_BENCH_SEQUENCE),
-# 5 repetitions of each, and prints the medians. Extra arguments go to the benchmark, e.g.
+# Speed on real KITTI scans (sequence 08 of ../shared/data/kitti, or $HIF_KITTI_DIR/sequences/08,
+# or the folder in $HIF_BENCH_SEQUENCE), in two parts (HIF_BENCH_PARTS, default both):
+#   algorithm  the Google Benchmark suite (bench/), 5 interleaved repetitions of each, medians;
+#   command    the whole hif-clean command as a user runs it, timed by /usr/bin/time: on the
+#              sequence in the DynamicMap benchmark layout (made once by kitti2rawlog
+#              --dynamicmap) and on the KITTI folder itself, $HIF_BENCH_RUNS runs each (default
+#              7), interleaved, outputs removed between runs; medians of wall time, CPU time and
+#              peak memory, the insertion and classification medians of summary.json, and the
+#              start of the process alone (hif-clean --version: MRPT and its libraries loaded).
+# Extra arguments go to the Google Benchmark, e.g.
 #   bash scripts/bench.sh --benchmark_filter=Insert
+#   HIF_BENCH_PARTS=command bash scripts/bench.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
+BUILD=${HIF_BUILD_DIR:-build}
+PARTS=${HIF_BENCH_PARTS:-algorithm command}
 HIF_BUILD_BENCH=ON bash scripts/build.sh > /dev/null
-"${HIF_BUILD_DIR:-build}/bench/hif_bench" --benchmark_repetitions="${HIF_BENCH_REPETITIONS:-5}" \
-  --benchmark_enable_random_interleaving=true \
-  --benchmark_report_aggregates_only=true --benchmark_display_aggregates_only=true "$@" \
-  | grep -vE "_(mean|stddev|cv) "
+
+if [[ " $PARTS " == *" algorithm "* ]]; then
+  "$BUILD/bench/hif_bench" --benchmark_repetitions="${HIF_BENCH_REPETITIONS:-5}" \
+    --benchmark_enable_random_interleaving=true \
+    --benchmark_report_aggregates_only=true --benchmark_display_aggregates_only=true "$@" \
+    | grep -vE "_(mean|stddev|cv) "
+fi
+
+[[ " $PARTS " == *" command "* ]] || exit 0
+SEQ=${HIF_BENCH_SEQUENCE:-${HIF_KITTI_DIR:-../shared/data/kitti}/sequences/08}
+if [ ! -d "$SEQ/velodyne" ]; then
+  echo "[bench] $SEQ/velodyne missing: the command benchmark needs KITTI scans" >&2
+  exit 1
+fi
+RUNS=${HIF_BENCH_RUNS:-7}
+WORK=$BUILD/bench-data
+DM=$WORK/dynamicmap
+mkdir -p "$WORK"
+# The benchmark layout, made once from the sequence (remade if the sequence is newer).
+if [ ! -d "$DM/pcd" ] || [ "$SEQ/velodyne" -nt "$DM/pcd" ]; then
+  "$BUILD/apps/kitti2rawlog" -i "$SEQ" -o "$DM" --dynamicmap --overwrite > /dev/null
+fi
+median() { sort -g | awk '{v[NR] = $1} END {print v[int((NR + 1) / 2)]}'; }
+field() { grep -E "\"$1\"" "$2" | head -1 | sed -E 's/.*: *([0-9.eE+-]+),?/\1/'; }
+
+declare -A COL
+record() { COL[$1]+="$2 "; }
+for ((r = 1; r <= RUNS; r++)); do
+  for input in dynamicmap kitti; do
+    src=$DM; [ $input = kitti ] && src=$SEQ
+    out=$WORK/out-$input
+    rm -rf "$out" "$DM/hif_output.pcd"   # a run replacing old results also deletes them
+    t=$( { /usr/bin/time -f "%e %U %S %M" "$BUILD/apps/hif-clean" -i "$src" -o "$out" -q \
+           > /dev/null; } 2>&1 | tail -1)
+    read -r wall user sys rss <<< "$t"
+    record "$input.wall" "$wall"
+    record "$input.cpu" "$(awk -v u="$user" -v s="$sys" 'BEGIN {print u + s}')"
+    record "$input.rss" "$(awk -v k="$rss" 'BEGIN {print k / 1024}')"
+    record "$input.insert" "$(field insert_ms_median "$out/summary.json")"
+    record "$input.classify" "$(field classify_ms_median "$out/summary.json")"
+    record "$input.scans" "$(field scans "$out/summary.json")"
+  done
+  t=$( { /usr/bin/time -f "%e" "$BUILD/apps/hif-clean" --version > /dev/null; } 2>&1 | tail -1)
+  record start.wall "$t"
+done
+med() { tr ' ' '\n' <<< "${COL[$1]}" | grep . | median; }
+echo "[bench] hif-clean, whole command, $RUNS runs each, medians (sequence $SEQ)"
+printf "%-44s %8s %8s %9s %10s %11s %10s\n" input "wall s" "CPU s" "peak MiB" "insert ms" \
+  "classify ms" "wall/alg"
+for input in dynamicmap kitti; do
+  n=$(med "$input.scans"); ins=$(med "$input.insert"); cls=$(med "$input.classify")
+  wall=$(med "$input.wall")
+  label="DynamicMap folder (dynamicmap.ini)"; [ $input = kitti ] && label="KITTI folder (kitti.ini)"
+  printf "%-44s %8.2f %8.2f %9.1f %10.2f %11.2f %10.2f\n" "$label" "$wall" "$(med "$input.cpu")" \
+    "$(med "$input.rss")" "$ins" "$cls" \
+    "$(awk -v w="$wall" -v n="$n" -v a="$ins" -v b="$cls" 'BEGIN {print w / (n * (a + b) / 1000)}')"
+done
+printf "%-44s %8.2f\n" "process start alone (hif-clean --version)" "$(med start.wall)"
+echo "[bench] wall/alg: the whole run over scans x (insert + classify medians) of its summary"

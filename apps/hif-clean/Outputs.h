@@ -27,6 +27,9 @@ struct Timings
     std::size_t scans = 0;
     std::size_t points = 0;  ///< in the scans inserted, where their type tells without converting
     double files_ms = 0;
+    /** Wall time of each stage: set-up (config, maps, input opened), pass 1 (insert, and online
+     *  classify), pass 2 (offline classify), finish (clouds completed, map saved). */
+    double setup_s = 0, insert_pass_s = 0, classify_pass_s = 0, finish_s = 0;
     double total_s = 0;
 };
 

@@ -84,7 +84,7 @@ public:
                 continue;
             }
             if (!have_pose_) throwNoPose();
-            out = {obs, pose_, frame_};
+            out = {obs, pose_, frame_, std::nullopt};
             have_pose_ = false;  // every scan needs its own pose: never reuse a stale one
             frame_.reset();      // and its own number
             return counted(true);

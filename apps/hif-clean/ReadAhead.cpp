@@ -20,8 +20,8 @@ namespace
 class ReadAhead : public ScanSource
 {
 public:
-    explicit ReadAhead(std::unique_ptr<ScanSource> source)
-        : source_(std::move(source)), reader_([this] { readLoop(); })
+    ReadAhead(std::unique_ptr<ScanSource> source, PrepareScan prepare)
+        : source_(std::move(source)), prepare_(std::move(prepare)), reader_([this] { readLoop(); })
     {
     }
 
@@ -113,7 +113,11 @@ private:
             try
             {
                 Scan s;
-                if (source_->next(s)) scan = std::move(s);
+                if (source_->next(s))
+                {
+                    if (prepare_) prepare_(s);
+                    scan = std::move(s);
+                }
             }
             catch (...)
             {
@@ -128,6 +132,7 @@ private:
     }
 
     std::unique_ptr<ScanSource> source_;
+    PrepareScan prepare_;
     mutable std::mutex mutex_;
     mutable std::condition_variable cv_;
     bool asked_ = false;  ///< a scan was asked for and not yet taken
@@ -139,9 +144,9 @@ private:
 };
 }  // namespace
 
-std::unique_ptr<ScanSource> readingAhead(std::unique_ptr<ScanSource> source)
+std::unique_ptr<ScanSource> readingAhead(std::unique_ptr<ScanSource> source, PrepareScan prepare)
 {
-    return std::make_unique<ReadAhead>(std::move(source));
+    return std::make_unique<ReadAhead>(std::move(source), std::move(prepare));
 }
 
 }  // namespace hif::apps

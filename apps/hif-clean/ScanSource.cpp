@@ -44,9 +44,9 @@ std::unique_ptr<ScanSource> openSource(const std::string& path)
 }
 }  // namespace
 
-std::unique_ptr<ScanSource> openScanSource(const std::string& path)
+std::unique_ptr<ScanSource> openScanSource(const std::string& path, PrepareScan prepare)
 {
-    return readingAhead(openSource(path));
+    return readingAhead(openSource(path), std::move(prepare));
 }
 
 mrpt::obs::CObservation::Ptr pointCloudObservation(const io::Cloud& cloud)
@@ -80,7 +80,7 @@ bool FrameScans::next(Scan& out)
         if (!obs) continue;
         if (isScan(*obs))
         {
-            out = {obs, pose_, std::nullopt};
+            out = {obs, pose_, std::nullopt, std::nullopt};
             return true;
         }
         if (IS_CLASS(*obs, mrpt::obs::CObservationRobotPose))

@@ -14,11 +14,13 @@
 #include <mrpt/poses/CPose3D.h>
 
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "hif/ScanWindow.h"
 #include "hif/io/Cloud.h"
 
 namespace hif::apps
@@ -30,7 +32,12 @@ struct Scan
     mrpt::obs::CObservation::Ptr obs;
     mrpt::poses::CPose3D robot_pose;
     std::optional<std::size_t> frame;
+    /** Its entry of the free-space window, when built as it was read (offline, pass 2). */
+    std::optional<hif::ScanWindow::Scan> window_scan;
 };
+
+/** Work done on each scan on the reader thread, right after reading it. */
+using PrepareScan = std::function<void(Scan&)>;
 
 class ScanSource
 {
@@ -51,15 +58,18 @@ public:
 
 /** Opens `path`: a folder with velodyne/ is a KITTI sequence, a folder with pcd/ a DynamicMap
  *  folder, a *.simplemap file a simple map, anything else a rawlog (plain or gzip). The source
- *  reads one scan ahead on a second thread. Throws std::runtime_error naming it. */
-std::unique_ptr<ScanSource> openScanSource(const std::string& path);
+ *  reads one scan ahead on a second thread, and there calls `prepare` (if set) on it. Throws
+ *  std::runtime_error naming it. */
+std::unique_ptr<ScanSource> openScanSource(const std::string& path, PrepareScan prepare = {});
 
 std::unique_ptr<ScanSource> openRawlog(const std::string& file);
 std::unique_ptr<ScanSource> openSimpleMap(const std::string& file);
 std::unique_ptr<ScanSource> openDynamicMapFolder(const std::string& folder);
 std::unique_ptr<ScanSource> openKittiFolder(const std::string& folder);
-/** `source`, its next scan read on a second thread while the caller works on the current one. */
-std::unique_ptr<ScanSource> readingAhead(std::unique_ptr<ScanSource> source);
+/** `source`, its next scan read (and given to `prepare`, if set) on a second thread while the
+ *  caller works on the current one. */
+std::unique_ptr<ScanSource> readingAhead(std::unique_ptr<ScanSource> source,
+                                         PrepareScan prepare = {});
 
 /** A CObservationPointCloud (sensor label LIDAR) holding `cloud` as a CPointsMapXYZI. */
 [[nodiscard]] mrpt::obs::CObservation::Ptr pointCloudObservation(const io::Cloud& cloud);

@@ -50,6 +50,10 @@ void writeSummary(const std::string& file, const SummaryInfo& info,
     j["insert_ms_median"] = ins.median;
     j["classify_ms_median"] = cls.median;
     j["files_s"] = t.files_ms / 1000.0;
+    j["stages_s"] = {{"setup", t.setup_s},
+                     {"insert_pass", t.insert_pass_s},
+                     {"classify_pass", t.classify_pass_s},
+                     {"finish", t.finish_s}};
     j["total_s"] = t.total_s;
     j["peak_rss_mb"] = hif::apps::peakRssMiB();
     j["skipped_objects"] = info.skipped_objects;

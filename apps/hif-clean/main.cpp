@@ -142,6 +142,10 @@ struct Run
 {
     std::string input, out_dir, cfg_file, section;
     bool online = false, hold_scans = false, show_progress = true;
+    /** Offline pass 2 with the free-space test: the reader thread builds each scan's window
+     *  entry as it reads it, numbering them from 0. Set only while the reader is idle. */
+    bool prepare_window = false;
+    std::size_t window_ids = 0;
     std::unique_ptr<hif::apps::ScanSource> source;
     std::string dm_output;  ///< <folder>/hif_output.pcd for a DynamicMap folder, else empty
     /** The outputs, written aside and put in place when complete. */
@@ -168,7 +172,15 @@ void setUp(Cli& cli, Run& run)
                                  "removed.ply", "removed.pcd", "predictions"},
         cli.overwrite.getValue(), "--overwrite");
 
-    run.source = hif::apps::openScanSource(run.input);
+    run.source = hif::apps::openScanSource(run.input,
+                                           [&run](hif::apps::Scan& s)
+                                           {
+                                               if (!run.prepare_window) return;
+                                               s.obs->load();
+                                               s.window_scan =
+                                                   hif::CHeightIntervalMap::makeWindowScan(
+                                                       run.window_ids++, *s.obs, s.robot_pose);
+                                           });
     if (run.source->isDynamicMapFolder())
     {
         run.dm_output = hif::apps::cleanDir(run.input) + "/hif_output.pcd";
@@ -266,7 +278,12 @@ void classifyAll(Run& run, std::vector<hif::apps::Scan>& held, Outputs& out, std
     hif::ScanWindow window;
     std::deque<hif::apps::Scan> ahead;  // read, not yet classified
     std::size_t next = 0;               // the next scan to read
-    if (!run.hold_scans) run.source->rewind();
+    if (!run.hold_scans)
+    {
+        run.prepare_window = w > 0;  // the reader is idle: pass 1 read to the end
+        run.window_ids = 0;
+        run.source->rewind();
+    }
     for (std::size_t k = 0; k < scans; ++k)
     {
         while (next < scans && next <= k + w)
@@ -278,7 +295,15 @@ void classifyAll(Run& run, std::vector<hif::apps::Scan>& held, Outputs& out, std
                 throw std::runtime_error("input '" + run.input + "' held " + std::to_string(scans) +
                                          " scans when first read, " + std::to_string(next) +
                                          " now");
-            if (w > 0) hif::CHeightIntervalMap::addToWindow(window, next, *s.obs, s.robot_pose);
+            if (s.window_scan)
+            {
+                if (s.window_scan->id != next)
+                    throw std::logic_error("window entry " + std::to_string(s.window_scan->id) +
+                                           " for scan " + std::to_string(next));
+                window.add(std::move(*s.window_scan));
+            }
+            else if (w > 0)
+                hif::CHeightIntervalMap::addToWindow(window, next, *s.obs, s.robot_pose);
             ahead.push_back(std::move(s));
             ++next;
         }
@@ -324,16 +349,22 @@ int runClean(Cli& cli)
             hif::apps::flagInRange(cli.first_frame.getValue(), "--first-frame", 0, 999999));
     Outputs out(dir, first_frame, std::move(static_files), std::move(removed_files));
     Timings t;
+    t.setup_s = msSince(t_start) / 1000.0;
+    auto t_pass = Clock::now();
     std::vector<hif::apps::Scan> held = insertAll(run, out, t);
+    t.insert_pass_s = msSince(t_pass) / 1000.0;
     if (!run.online)
     {
         out.expectKept(t.points);  // most points are kept
+        t_pass = Clock::now();
         classifyAll(run, held, out, t.scans);
+        t.classify_pass_s = msSince(t_pass) / 1000.0;
     }
 
     const auto t_files = Clock::now();
     out.close();
     writeMap(*run.hif_map, dir + "/map.hifmap");
+    t.finish_s = msSince(t_files) / 1000.0;
     t.files_ms = msSince(t_files) + out.write_ms_total;
     t.total_s = msSince(t_start) / 1000.0;
 

@@ -14,24 +14,44 @@ namespace hif
 {
 static_assert(ScanWindow::kNoReturn == detail::kNoReturnCm);
 
-void ScanWindow::add(std::size_t id, const PointsView& points,
-                     const Eigen::Isometry3d& sensor_to_world)
+void ScanWindow::checkNext(std::size_t id) const
 {
     if (!scans_.empty() && id <= scans_.back().id)
         throw std::invalid_argument("hif::ScanWindow::add: scan " + std::to_string(id) +
                                     " after scan " + std::to_string(scans_.back().id) +
                                     " (ids must increase)");
+}
+
+ScanWindow::Scan ScanWindow::makeScan(std::size_t id, const PointsView& points,
+                                      const Eigen::Isometry3d& sensor_to_world,
+                                      std::vector<uint16_t> image)
+{
     Scan s;
     s.id = id;
     s.sensor_to_world = sensor_to_world;
     s.world_to_sensor_rotation = sensor_to_world.linear().transpose();
+    s.image = std::move(image);
+    detail::buildRangeImageCm(points, s.image);
+    return s;
+}
+
+void ScanWindow::add(Scan scan)
+{
+    checkNext(scan.id);
+    scans_.push_back(std::move(scan));
+}
+
+void ScanWindow::add(std::size_t id, const PointsView& points,
+                     const Eigen::Isometry3d& sensor_to_world)
+{
+    checkNext(id);  // before the image is built
+    std::vector<uint16_t> image;
     if (!spare_.empty())
     {
-        s.image = std::move(spare_.back());
+        image = std::move(spare_.back());
         spare_.pop_back();
     }
-    detail::buildRangeImageCm(points, s.image);
-    scans_.push_back(std::move(s));
+    add(makeScan(id, points, sensor_to_world, std::move(image)));
 }
 
 void ScanWindow::dropBefore(std::size_t first)

@@ -104,7 +104,7 @@ CloudWriter::CloudWriter(std::vector<std::string> files) : files_(std::move(file
     for (const std::string& file : files_)
         if (!endsWith(file, ".pcd") && !endsWith(file, ".ply"))
             throwFileError(file, "has an unknown point-cloud extension (use .ply or .pcd)");
-    buf_.reserve(4 * 8192);
+    buf_.resize(4 * 8192);
 }
 
 CloudWriter::~CloudWriter()
@@ -118,7 +118,8 @@ CloudWriter::~CloudWriter()
 
 void CloudWriter::expectCount(std::size_t count)
 {
-    if (f_ || closed_) throw std::logic_error("CloudWriter::expectCount() after the first point");
+    if (count_ > 0 || closed_)
+        throw std::logic_error("CloudWriter::expectCount() after the first point");
     expected_ = count;
 }
 
@@ -144,17 +145,10 @@ void CloudWriter::open()
 
 void CloudWriter::flush()
 {
-    if (!buf_.empty() && std::fwrite(buf_.data(), sizeof(float), buf_.size(), f_) != buf_.size())
-        throwFileError(body_file_, "could not be written (disk full?)");
-    buf_.clear();
-}
-
-void CloudWriter::add(float x, float y, float z, float intensity)
-{
     if (!f_) open();
-    buf_.insert(buf_.end(), {x, y, z, intensity});
-    ++count_;
-    if (buf_.size() >= 4 * 8192) flush();
+    if (used_ > 0 && std::fwrite(buf_.data(), sizeof(float), used_, f_) != used_)
+        throwFileError(body_file_, "could not be written (disk full?)");
+    used_ = 0;
 }
 
 std::string CloudWriter::viewpointText() const
@@ -183,8 +177,7 @@ std::string CloudWriter::header(const std::string& file, std::size_t count) cons
 void CloudWriter::close()
 {
     if (closed_) return;
-    if (!f_) open();  // no point: the files still get their headers
-    flush();
+    flush();  // with no point, the files still get their headers
     const bool failed = std::fclose(f_) != 0;
     f_ = nullptr;
     closed_ = true;

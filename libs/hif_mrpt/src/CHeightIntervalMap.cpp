@@ -153,6 +153,14 @@ bool CHeightIntervalMap::addToWindow(ScanWindow& window, std::size_t id,
     return true;
 }
 
+std::optional<ScanWindow::Scan> CHeightIntervalMap::makeWindowScan(
+    std::size_t id, const mrpt::obs::CObservation& obs, const mrpt::poses::CPose3D& robotPose)
+{
+    SensorPoints sp;
+    if (!mrpt_adapter::sensorPoints(obs, sp)) return std::nullopt;
+    return ScanWindow::makeScan(id, sp.view, mrpt_adapter::toIsometry(robotPose + sp.sensor_pose));
+}
+
 bool CHeightIntervalMap::internal_canComputeObservationLikelihood(
     const mrpt::obs::CObservation& obs) const
 {

@@ -39,6 +39,13 @@ public:
     /** Adds scan `id` (points in the sensor frame, placed by `sensor_to_world`). Ids must
      *  increase; throws std::invalid_argument otherwise. */
     void add(std::size_t id, const PointsView& points, const Eigen::Isometry3d& sensor_to_world);
+    /** The costly half of add(): scan `id` with its range image built, not added, so that it
+     *  can be built on another thread (into `image`'s memory, if given). */
+    [[nodiscard]] static Scan makeScan(std::size_t id, const PointsView& points,
+                                       const Eigen::Isometry3d& sensor_to_world,
+                                       std::vector<uint16_t> image = {});
+    /** Adds a scan made by makeScan(); ids must increase, as for add(). */
+    void add(Scan scan);
     /** Forgets the scans numbered below `first`. */
     void dropBefore(std::size_t first);
     void clear() { scans_.clear(); }
@@ -51,8 +58,10 @@ public:
     [[nodiscard]] std::size_t memoryBytes() const;
 
 private:
+    /** Throws std::invalid_argument unless `id` comes after the newest scan. */
+    void checkNext(std::size_t id) const;
+
     std::deque<Scan> scans_;
-    std::vector<float> scratch_;                ///< the image in metres, as built
     std::vector<std::vector<uint16_t>> spare_;  ///< images of dropped scans, reused
 };
 

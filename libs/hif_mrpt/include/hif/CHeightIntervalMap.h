@@ -13,9 +13,11 @@
 #include <mrpt/poses/CPose3D.h>
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "hif/PillarGrid.h"
+#include "hif/ScanWindow.h"
 
 namespace hif
 {
@@ -80,6 +82,12 @@ public:
      *  observation type the map cannot insert. */
     static bool addToWindow(ScanWindow& window, std::size_t id, const mrpt::obs::CObservation& obs,
                             const mrpt::poses::CPose3D& robotPose);
+    /** addToWindow() in two halves: the window's entry for the observation, built (on any
+     *  thread), to be added with ScanWindow::add(). Empty for an observation type the map cannot
+     *  insert. */
+    static std::optional<ScanWindow::Scan> makeWindowScan(std::size_t id,
+                                                          const mrpt::obs::CObservation& obs,
+                                                          const mrpt::poses::CPose3D& robotPose);
 
     [[nodiscard]] std::size_t pillarCount() const { return grid_.pillarCount(); }
     [[nodiscard]] std::size_t intervalCount() const { return grid_.intervalCount(); }

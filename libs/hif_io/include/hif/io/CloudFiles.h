@@ -39,13 +39,24 @@ public:
     /** A guess of the final count, before the first point: right to the number of digits, it
      *  saves a copy of the body (wrong, it costs the copy it would have saved). */
     void expectCount(std::size_t count);
-    void add(float x, float y, float z, float intensity);
+    void add(float x, float y, float z, float intensity)
+    {
+        if (used_ == buf_.size()) flush();
+        float* p = buf_.data() + used_;
+        p[0] = x;
+        p[1] = y;
+        p[2] = z;
+        p[3] = intensity;
+        used_ += 4;
+        ++count_;
+    }
     /** Writes the files; they are complete only after this. */
     void close();
     [[nodiscard]] std::size_t count() const { return count_; }
 
 private:
     void open();
+    /** Writes what buf_ holds (opening the body's file first if needed). */
     void flush();
     [[nodiscard]] std::string viewpointText() const;
     [[nodiscard]] std::string header(const std::string& file, std::size_t count) const;
@@ -57,7 +68,8 @@ private:
     std::FILE* f_ = nullptr;
     bool closed_ = false;
     std::size_t count_ = 0;
-    std::vector<float> buf_;
+    std::vector<float> buf_;  ///< points not yet written, x y z intensity each
+    std::size_t used_ = 0;    ///< floats of buf_ in use
     Eigen::Isometry3d viewpoint_ = Eigen::Isometry3d::Identity();
 };
 
