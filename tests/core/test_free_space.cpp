@@ -294,6 +294,31 @@ TEST(ScanWindow, IdsIncreaseAndOldScansAreDropped)
     EXPECT_EQ(w.scans().front().id, 5u);
     EXPECT_EQ(w.lastId(), 8u);
     EXPECT_GT(w.memoryBytes(), 2 * 400000u);  // two images of 2 bytes a cell
+
+    // Entries built apart (makeScan, as hif-clean's reader thread does) are the same as those
+    // add() builds, and a window sliding over many scans stays the same size either way.
+    const ScanWindow::Scan made = ScanWindow::makeScan(9, scans[2].view(), scans[2].pose);
+    EXPECT_EQ(made.image, w.scans().back().image);
+    EXPECT_TRUE(made.sensor_to_world.isApprox(w.scans().back().sensor_to_world));
+    EXPECT_THROW(w.add(ScanWindow::makeScan(8, scans[2].view(), scans[2].pose)),
+                 std::invalid_argument);
+    for (const bool apart : {false, true})
+    {
+        ScanWindow slide;
+        std::size_t bytes_at_20 = 0;
+        for (std::size_t id = 0; id < 60; ++id)
+        {
+            const Scan& sc = scans[id % scans.size()];
+            if (apart)
+                slide.add(ScanWindow::makeScan(id, sc.view(), sc.pose));
+            else
+                slide.add(id, sc.view(), sc.pose);
+            slide.dropBefore(id >= 5 ? id - 5 : 0);
+            if (id == 20) bytes_at_20 = slide.memoryBytes();
+        }
+        EXPECT_EQ(slide.size(), 6u);
+        EXPECT_EQ(slide.memoryBytes(), bytes_at_20) << (apart ? "makeScan" : "add(id, ...)");
+    }
 }
 
 TEST(MinRange, NearPointsAreNotInsertedAndAreDynamic)

@@ -14,6 +14,11 @@ namespace hif
 {
 static_assert(ScanWindow::kNoReturn == detail::kNoReturnCm);
 
+namespace
+{
+constexpr std::size_t kMaxSpares = 2;
+}
+
 void ScanWindow::checkNext(std::size_t id) const
 {
     if (!scans_.empty() && id <= scans_.back().id)
@@ -58,7 +63,8 @@ void ScanWindow::dropBefore(std::size_t first)
 {
     while (!scans_.empty() && scans_.front().id < first)
     {
-        spare_.push_back(std::move(scans_.front().image));
+        // add(id, ...) takes one back per scan; add(Scan) brings its own, so keep only a few.
+        if (spare_.size() < kMaxSpares) spare_.push_back(std::move(scans_.front().image));
         scans_.pop_front();
     }
 }
