@@ -38,5 +38,5 @@ for mode in offline online; do
     grep "^moving-" "$OUT/$mode/scores.txt" | sed "s/^/[demo]   DA of /" || true
   fi
 done
-echo "[demo] outputs in $OUT/{offline,online}: static_map.{ply,pcd} (the cleaned map),"
-echo "[demo]   removed.{ply,pcd}, predictions/*.label, map.hifmap, summary.json, scores.json"
+echo "[demo] outputs in $OUT/{offline,online}: static_map.ply (the cleaned map),"
+echo "[demo]   removed.ply, predictions/*.label, map.hifmap, summary.json, scores.json"
