@@ -24,7 +24,11 @@ namespace
 class RawlogSource : public ScanSource
 {
 public:
-    explicit RawlogSource(std::string file) : file_(std::move(file)) { open(); }
+    RawlogSource(std::string file, bool poses_required)
+        : file_(std::move(file)), poses_required_(poses_required)
+    {
+        open();
+    }
 
     bool next(Scan& out) override
     {
@@ -70,9 +74,10 @@ public:
                 const auto first_pose = std::find_if(
                     sf->begin(), sf->end(),
                     [](const auto& o) { return o && IS_CLASS(*o, CObservationRobotPose); });
-                if (first_scan != sf->end() && !have_pose_ && first_pose > first_scan)
+                if (first_scan != sf->end() && !have_pose_ && first_pose > first_scan &&
+                    poses_required_)
                     throwNoPose();
-                frame_scans_.assign(*sf, pose_);
+                frame_scans_.assign(*sf, have_pose_ ? pose_ : mrpt::poses::CPose3D(), have_pose_);
                 have_pose_ = false;
                 if (frame_scans_.next(out)) return counted(true);
                 continue;
@@ -83,8 +88,9 @@ public:
                 ++skipped_;
                 continue;
             }
-            if (!have_pose_) throwNoPose();
-            out = {obs, pose_, frame_, std::nullopt};
+            if (!have_pose_ && poses_required_) throwNoPose();
+            out = {obs, have_pose_ ? pose_ : mrpt::poses::CPose3D(), frame_, std::nullopt,
+                   have_pose_};
             have_pose_ = false;  // every scan needs its own pose: never reuse a stale one
             frame_.reset();      // and its own number
             return counted(true);
@@ -123,6 +129,7 @@ private:
     }
 
     std::string file_;
+    bool poses_required_;
     std::unique_ptr<mrpt::io::CFileGZInputStream> in_;
     FrameScans frame_scans_;
     std::optional<std::size_t> frame_;  ///< from a "kitti frame N" comment, for the next scan
@@ -133,9 +140,9 @@ private:
 };
 }  // namespace
 
-std::unique_ptr<ScanSource> openRawlog(const std::string& file)
+std::unique_ptr<ScanSource> openRawlog(const std::string& file, bool poses_required)
 {
-    return std::make_unique<RawlogSource>(file);
+    return std::make_unique<RawlogSource>(file, poses_required);
 }
 
 }  // namespace hif::apps

@@ -27,7 +27,7 @@ bool isScan(const mrpt::obs::CObservation& obs)
 
 namespace
 {
-std::unique_ptr<ScanSource> openSource(const std::string& path)
+std::unique_ptr<ScanSource> openSource(const std::string& path, bool poses_required)
 {
     if (fs::is_directory(path))
     {
@@ -40,13 +40,14 @@ std::unique_ptr<ScanSource> openSource(const std::string& path)
     }
     if (!fs::exists(path)) throw std::runtime_error("input '" + path + "' does not exist");
     if (fs::path(path).extension() == ".simplemap") return openSimpleMap(path);
-    return openRawlog(path);
+    return openRawlog(path, poses_required);
 }
 }  // namespace
 
-std::unique_ptr<ScanSource> openScanSource(const std::string& path, PrepareScan prepare)
+std::unique_ptr<ScanSource> openScanSource(const std::string& path, PrepareScan prepare,
+                                           bool poses_required)
 {
-    return readingAhead(openSource(path), std::move(prepare));
+    return readingAhead(openSource(path, poses_required), std::move(prepare));
 }
 
 mrpt::obs::CObservation::Ptr pointCloudObservation(const io::Cloud& cloud)
@@ -64,8 +65,10 @@ mrpt::obs::CObservation::Ptr pointCloudObservation(const io::Cloud& cloud)
     return obs;
 }
 
-void FrameScans::assign(const mrpt::obs::CSensoryFrame& frame, const mrpt::poses::CPose3D& pose)
+void FrameScans::assign(const mrpt::obs::CSensoryFrame& frame, const mrpt::poses::CPose3D& pose,
+                        bool has_pose)
 {
+    has_pose_ = has_pose;
     pending_.assign(frame.begin(), frame.end());
     std::reverse(pending_.begin(), pending_.end());
     pose_ = pose;
@@ -80,11 +83,14 @@ bool FrameScans::next(Scan& out)
         if (!obs) continue;
         if (isScan(*obs))
         {
-            out = {obs, pose_, std::nullopt, std::nullopt};
+            out = {obs, pose_, std::nullopt, std::nullopt, has_pose_};
             return true;
         }
         if (IS_CLASS(*obs, mrpt::obs::CObservationRobotPose))
+        {
             pose_ = dynamic_cast<const mrpt::obs::CObservationRobotPose&>(*obs).pose.mean;
+            has_pose_ = true;
+        }
     }
     return false;
 }

@@ -34,6 +34,9 @@ struct Scan
     std::optional<std::size_t> frame;
     /** Its entry of the free-space window, when built as it was read (offline, pass 2). */
     std::optional<hif::ScanWindow::Scan> window_scan;
+    /** False for a scan of a rawlog opened with poses optional that had none before it
+     *  (robot_pose is then the identity). */
+    bool has_pose = true;
 };
 
 /** Work done on each scan on the reader thread, right after reading it. */
@@ -60,9 +63,12 @@ public:
  *  folder, a *.simplemap file a simple map, anything else a rawlog (plain or gzip). The source
  *  reads one scan ahead on a second thread, and there calls `prepare` (if set) on it. Throws
  *  std::runtime_error naming it. */
-std::unique_ptr<ScanSource> openScanSource(const std::string& path, PrepareScan prepare = {});
+std::unique_ptr<ScanSource> openScanSource(const std::string& path, PrepareScan prepare = {},
+                                           bool poses_required = true);
 
-std::unique_ptr<ScanSource> openRawlog(const std::string& file);
+/** With `poses_required` false, a scan without a CObservationRobotPose before it is handed out
+ *  with has_pose false instead of being an error (SLAM estimates its own poses). */
+std::unique_ptr<ScanSource> openRawlog(const std::string& file, bool poses_required = true);
 std::unique_ptr<ScanSource> openSimpleMap(const std::string& file);
 std::unique_ptr<ScanSource> openDynamicMapFolder(const std::string& folder);
 std::unique_ptr<ScanSource> openKittiFolder(const std::string& folder);
@@ -83,7 +89,8 @@ class FrameScans
 {
 public:
     /** The frame's observations, with the robot pose of the scans before any pose in it. */
-    void assign(const mrpt::obs::CSensoryFrame& frame, const mrpt::poses::CPose3D& pose);
+    void assign(const mrpt::obs::CSensoryFrame& frame, const mrpt::poses::CPose3D& pose,
+                bool has_pose = true);
     /** The next scan of the frame; false when none is left. */
     bool next(Scan& out);
     void clear() { pending_.clear(); }
@@ -91,6 +98,7 @@ public:
 private:
     std::vector<mrpt::obs::CObservation::Ptr> pending_;  // in reverse order
     mrpt::poses::CPose3D pose_;
+    bool has_pose_ = true;
 };
 
 }  // namespace hif::apps

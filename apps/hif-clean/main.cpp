@@ -26,6 +26,7 @@
 #include "Summary.h"
 #include "hif/CHeightIntervalMap.h"
 #include "hif/apps/Cli.h"
+#include "hif/apps/ShippedConfig.h"
 #include "hif/apps/Staged.h"
 
 namespace fs = std::filesystem;
@@ -35,23 +36,11 @@ namespace
 const std::string kTag = "[hif-clean]";
 
 /** The shipped configuration for the mode and input: kitti-online.ini online, dynamicmap.ini
- *  for a DynamicMap folder, else kitti.ini; from the installed share/hif/config beside this
- *  program (any install prefix), else the source tree's (a build tree). */
+ *  for a DynamicMap folder, else kitti.ini. */
 std::string defaultConfig(bool online, bool dynamicmap)
 {
-    const std::string name =
-        online ? "kitti-online.ini" : (dynamicmap ? "dynamicmap.ini" : "kitti.ini");
-    std::error_code ec;
-    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-    std::vector<fs::path> dirs;
-    if (!ec) dirs.push_back((exe.parent_path() / HIF_SHARE_FROM_BIN / "config").lexically_normal());
-    dirs.push_back(fs::path(HIF_SOURCE_SHARE_DIR) / "config");
-    for (const fs::path& dir : dirs)
-        if (fs::exists(dir / name)) return (dir / name).string();
-    std::string tried;
-    for (const fs::path& dir : dirs) tried += (tried.empty() ? "'" : ", '") + dir.string() + "'";
-    throw std::runtime_error("the default configuration " + name + " was not found in " + tried +
-                             "; pass -c");
+    return hif::apps::shippedConfig(online ? "kitti-online.ini"
+                                           : (dynamicmap ? "dynamicmap.ini" : "kitti.ini"));
 }
 
 struct Cli

@@ -53,7 +53,8 @@ std::size_t plyVertexCount(const std::string& file)
 
 TEST(Apps, HelpExitsZeroAndABadFlagStopsTheApp)
 {
-    for (const std::string app : {"kitti2rawlog", "hif-clean", "hif-eval", "hif-synthetic-kitti"})
+    for (const std::string app :
+         {"kitti2rawlog", "hif-clean", "hif-eval", "hif-synthetic-kitti", "hif-icp-slam"})
     {
         SCOPED_TRACE(app);
         const auto help = runApp(app, "--help");
