@@ -66,6 +66,10 @@ void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::ap
             continue;  // counted as invalid, labelled moving, not written to a cloud
         (dyn[i] ? removed_cloud_ : kept_cloud_).add(x[i], y[i], z[i], intensity[i]);
     }
+    if (view_)
+        for (std::size_t i = 0; i < dyn.size(); ++i)
+            view_->add(x[i], y[i], z[i],
+                       dyn[i] ? hif::apps::TopView::kRemoved : hif::apps::TopView::kKept);
     std::size_t frame = first_frame_.value_or(0) + k;
     if (scan.frame)
     {
@@ -87,6 +91,29 @@ void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::ap
     points_invalid += st.invalid_points;
     points_near += st.near_points;
     points_seen_through += st.seen_through_points;
+}
+
+void Outputs::pictureCovers(const hif::CHeightIntervalMap& map)
+{
+    if (!view_) return;
+    const auto pillars = map.grid().sortedPillars();
+    if (pillars.empty()) return;
+    int m0 = pillars.front().first.m, m1 = m0, n0 = pillars.front().first.n, n1 = n0;
+    for (const auto& [idx, pillar] : pillars)
+    {
+        m0 = std::min(m0, idx.m);
+        m1 = std::max(m1, idx.m);
+        n0 = std::min(n0, idx.n);
+        n1 = std::max(n1, idx.n);
+    }
+    const hif::GridGeometry& g = map.geometry();
+    view_->cover(g.origin_x + m0 * g.pillar_size, g.origin_y + n0 * g.pillar_size,
+                 g.origin_x + (m1 + 1) * g.pillar_size, g.origin_y + (n1 + 1) * g.pillar_size);
+}
+
+std::pair<int, int> Outputs::writePicture(const std::string& file, const std::string& title) const
+{
+    return view_ ? view_->write(file, title, false) : std::pair<int, int>{0, 0};
 }
 
 void Outputs::close()

@@ -14,6 +14,7 @@
 #include "ScanSource.h"
 #include "hif/CHeightIntervalMap.h"
 #include "hif/apps/Cli.h"
+#include "hif/apps/TopView.h"
 #include "hif/io/CloudFiles.h"
 
 using hif::apps::Clock;
@@ -52,6 +53,12 @@ public:
     /** Before the first scan is classified: about how many points the kept cloud will get (a
      *  guess: right to the number of digits, it saves a copy of that file). */
     void expectKept(std::size_t points) { kept_cloud_.expectCount(points); }
+    /** Also draws every point into a bird's-eye picture (see writePicture()). */
+    void drawPicture() { view_.emplace(); }
+    /** The picture will cover the map's area (so it need not grow as points come). */
+    void pictureCovers(const hif::CHeightIntervalMap& map);
+    /** Writes the picture as a PNG, if drawn; returns its {width, height}, or {0, 0}. */
+    std::pair<int, int> writePicture(const std::string& file, const std::string& title) const;
     /** Completes the cloud files. */
     void close();
 
@@ -66,4 +73,5 @@ private:
     std::optional<std::size_t> first_frame_;
     std::vector<bool> written_;  ///< frame numbers written, to refuse a second scan of one
     std::vector<float> buf_[4];  ///< x, y, z, intensity of the current scan
+    std::optional<hif::apps::TopView> view_;
 };

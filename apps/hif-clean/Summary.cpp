@@ -91,6 +91,6 @@ void printReport(const std::string& tag, const std::string& out_dir, const std::
         << tag << " total " << t.total_s << " s, peak memory " << hif::apps::peakRssMiB()
         << " MiB\n"
         << tag << " wrote " << out_dir << "/{static_map,removed}."
-        << (format == "both" ? "{ply,pcd}" : format) << ", predictions/, "
+        << (format == "both" ? "{ply,pcd}" : format) << ", map.png, predictions/, "
         << "map.hifmap, summary.json" << (dm_output.empty() ? "" : " and " + dm_output) << "\n";
 }

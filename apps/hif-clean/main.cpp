@@ -11,6 +11,8 @@
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/maps/CMultiMetricMap.h>
 #include <mrpt/obs/CObservationPointCloud.h>
+#include <mrpt/opengl/COpenGLScene.h>
+#include <mrpt/opengl/CSetOfObjects.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include <malloc.h>
@@ -20,6 +22,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <sstream>
 
 #include "Outputs.h"
 #include "ScanSource.h"
@@ -86,6 +89,14 @@ struct Cli
         "ply",
         &format_values,
         cmd};
+    TCLAP::SwitchArg no_png{"", "no-png",
+                            "Do not draw map.png (the bird's-eye picture of kept and removed "
+                            "points)",
+                            cmd};
+    TCLAP::SwitchArg scene{"", "scene",
+                           "Also write map.3Dscene: the HIF map's intervals as boxes coloured "
+                           "by P(static), for MRPT's SceneViewer3D",
+                           cmd};
     TCLAP::ValueArg<std::string> section{
         "",     "section", "Section of the .ini with the map list (default: map)", false, "map",
         "name", cmd};
@@ -158,7 +169,8 @@ void setUp(Cli& cli, Run& run)
     run.staged = std::make_unique<hif::apps::StagedFolder>(
         run.out_dir,
         std::vector<std::string>{"summary.json", "map.hifmap", "static_map.ply", "static_map.pcd",
-                                 "removed.ply", "removed.pcd", "predictions"},
+                                 "removed.ply", "removed.pcd", "predictions", "map.png",
+                                 "map.3Dscene"},
         cli.overwrite.getValue(), "--overwrite");
 
     run.source = hif::apps::openScanSource(run.input,
@@ -313,6 +325,16 @@ void writeMap(const hif::CHeightIntervalMap& map, const std::string& file)
     arch << map;
 }
 
+/** The map's intervals as a scene that SceneViewer3D opens. */
+void writeScene(const hif::CHeightIntervalMap& map, const std::string& file)
+{
+    mrpt::opengl::COpenGLScene scene;
+    auto objs = mrpt::opengl::CSetOfObjects::Create();
+    map.getVisualizationInto(*objs);
+    scene.insert(objs);
+    if (!scene.saveToFile(file)) throw std::runtime_error("cannot write '" + file + "'");
+}
+
 int runClean(Cli& cli)
 {
     const auto t_start = Clock::now();
@@ -337,6 +359,7 @@ int runClean(Cli& cli)
         first_frame = static_cast<std::size_t>(
             hif::apps::flagInRange(cli.first_frame.getValue(), "--first-frame", 0, 999999));
     Outputs out(dir, first_frame, std::move(static_files), std::move(removed_files));
+    if (!cli.no_png.getValue()) out.drawPicture();
     Timings t;
     t.setup_s = msSince(t_start) / 1000.0;
     auto t_pass = Clock::now();
@@ -345,14 +368,22 @@ int runClean(Cli& cli)
     if (!run.online)
     {
         out.expectKept(t.points);  // most points are kept
+        out.pictureCovers(*run.hif_map);
         t_pass = Clock::now();
         classifyAll(run, held, out, t.scans);
         t.classify_pass_s = msSince(t_pass) / 1000.0;
     }
 
     const auto t_files = Clock::now();
+    malloc_trim(0);  // the scans' buffers, kept for reuse while scans came, go back now
     out.close();
     writeMap(*run.hif_map, dir + "/map.hifmap");
+    std::ostringstream title;
+    title << "hif-clean " << fs::path(run.input).filename().string() << ": " << t.scans
+          << " scans, " << out.points_kept << " points kept, " << out.points_removed
+          << " removed (red)";
+    out.writePicture(dir + "/map.png", title.str());
+    if (cli.scene.getValue()) writeScene(*run.hif_map, dir + "/map.3Dscene");
     t.finish_s = msSince(t_files) / 1000.0;
     t.files_ms = msSince(t_files) + out.write_ms_total;
     t.total_s = msSince(t_start) / 1000.0;

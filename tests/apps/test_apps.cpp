@@ -12,7 +12,10 @@
 #include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/obs/CObservationRobotPose.h>
+#include <mrpt/opengl/COpenGLScene.h>
 #include <mrpt/serialization/CArchive.h>
+
+#include <opencv2/imgcodecs.hpp>
 
 #include <unistd.h>
 
@@ -242,6 +245,20 @@ TEST_F(SyntheticPipeline, OfflineAndOnlineCleaningScoreAndWriteEverything)
             EXPECT_FALSE(fs::exists(out + "/removed.pcd"));
         }
 
+        // The picture: a PNG at least 1200 px wide, grey kept points and red removed ones.
+        const cv::Mat png = cv::imread(out + "/map.png");
+        ASSERT_FALSE(png.empty());
+        EXPECT_GE(png.cols, 1200);
+        std::size_t red = 0, grey = 0;
+        for (int row = 0; row < png.rows; ++row)
+            for (int col = 0; col < png.cols; ++col)
+            {
+                const cv::Vec3b p = png.at<cv::Vec3b>(row, col);  // BGR
+                red += p[2] > 200 && p[1] < 80 && p[0] < 80;
+                grey += p[0] == p[1] && p[1] == p[2] && p[0] >= 70;
+            }
+        EXPECT_GT(red, 1000u);
+        EXPECT_GT(grey, 100000u);
         // The saved map loads back through MRPT's class factory, as the one that was used.
         mrpt::io::CFileGZInputStream f(out + "/map.hifmap");
         auto arch = mrpt::serialization::archiveFrom(f);
@@ -259,9 +276,15 @@ TEST_F(SyntheticPipeline, ThreadsAndHeldScansGiveIdenticalResults)
     const std::string a = root_ + "/one_thread", b = root_ + "/two_threads_held";
     auto r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + a + " -q --threads 1");
     ASSERT_EQ(r.code, 0) << r.output;
-    r = runApp("hif-clean",
-               "-i " + root_ + "/scans.rawlog -o " + b + " -q --threads 2 --hold-scans");
+    r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + b +
+                                " -q --threads 2 --hold-scans --no-png --scene");
     ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_TRUE(fs::exists(a + "/map.png"));
+    EXPECT_FALSE(fs::exists(b + "/map.png"));
+    EXPECT_FALSE(fs::exists(a + "/map.3Dscene"));
+    mrpt::opengl::COpenGLScene scene;
+    ASSERT_TRUE(scene.loadFromFile(b + "/map.3Dscene"));
+    EXPECT_TRUE(scene.getByName("hif::CHeightIntervalMap"));
     auto bytes = [](const std::string& file)
     {
         std::ifstream in(file, std::ios::binary);
