@@ -207,7 +207,7 @@ std::pair<int, int> TopView::write(const std::string& file, const std::string& t
     char label[32];
     std::snprintf(label, sizeof label, "%g m", len);
     cv::putText(out, label, {20 + px + 10, out.rows - 19}, font, 0.6, kText, 1, cv::LINE_AA);
-    if (!cv::imwrite(file, out, {cv::IMWRITE_PNG_COMPRESSION, 1}))
+    if (!cv::imwrite(file, out, {cv::IMWRITE_PNG_COMPRESSION, 1, cv::IMWRITE_PNG_STRATEGY, cv::IMWRITE_PNG_STRATEGY_RLE}))
         throw std::runtime_error("cannot write '" + file + "'");
     return {out.cols, out.rows};
 }
