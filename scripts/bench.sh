@@ -5,7 +5,8 @@
 #   algorithm  the Google Benchmark suite (bench/), 5 interleaved repetitions of each, medians;
 #   command    the whole hif-clean command as a user runs it, timed by /usr/bin/time: on the
 #              sequence in the DynamicMap benchmark layout (made once by kitti2rawlog
-#              --dynamicmap) and on the KITTI folder itself, $HIF_BENCH_RUNS runs each (default
+#              --dynamicmap), the same without map.png (--no-png), and on the KITTI folder
+#              itself, $HIF_BENCH_RUNS runs each (default
 #              7), interleaved, outputs removed between runs; medians of wall time, CPU time and
 #              peak memory, the insertion and classification medians of summary.json, and the
 #              start of the process alone (hif-clean --version: MRPT and its libraries loaded).
@@ -44,13 +45,15 @@ field() { grep -E "\"$1\"" "$2" | head -1 | sed -E 's/.*: *([0-9.eE+-]+),?/\1/';
 
 declare -A COL
 record() { COL[$1]+="$2 "; }
+INPUTS=(dynamicmap nopng kitti)
 for ((r = 1; r <= RUNS; r++)); do
-  for input in dynamicmap kitti; do
+  for input in "${INPUTS[@]}"; do
     src=$DM; [ $input = kitti ] && src=$SEQ
+    flags=(-q); [ $input = nopng ] && flags+=(--no-png)
     out=$WORK/out-$input
     rm -rf "$out" "$DM/hif_output.pcd"   # a run replacing old results also deletes them
-    t=$( { /usr/bin/time -f "%e %U %S %M" "$BUILD/apps/hif-clean" -i "$src" -o "$out" -q \
-           > /dev/null; } 2>&1 | tail -1)
+    t=$( { /usr/bin/time -f "%e %U %S %M" "$BUILD/apps/hif-clean" -i "$src" -o "$out" \
+           "${flags[@]}" > /dev/null; } 2>&1 | tail -1)
     read -r wall user sys rss <<< "$t"
     record "$input.wall" "$wall"
     record "$input.cpu" "$(awk -v u="$user" -v s="$sys" 'BEGIN {print u + s}')"
@@ -66,10 +69,14 @@ med() { tr ' ' '\n' <<< "${COL[$1]}" | grep . | median; }
 echo "[bench] hif-clean, whole command, $RUNS runs each, medians (sequence $SEQ)"
 printf "%-44s %8s %8s %9s %10s %11s %10s\n" input "wall s" "CPU s" "peak MiB" "insert ms" \
   "classify ms" "wall/alg"
-for input in dynamicmap kitti; do
+for input in "${INPUTS[@]}"; do
   n=$(med "$input.scans"); ins=$(med "$input.insert"); cls=$(med "$input.classify")
   wall=$(med "$input.wall")
-  label="DynamicMap folder (dynamicmap.ini)"; [ $input = kitti ] && label="KITTI folder (kitti.ini)"
+  case $input in
+    dynamicmap) label="DynamicMap folder (dynamicmap.ini)" ;;
+    nopng) label="DynamicMap folder, --no-png" ;;
+    kitti) label="KITTI folder (kitti.ini)" ;;
+  esac
   printf "%-44s %8.2f %8.2f %9.1f %10.2f %11.2f %10.2f\n" "$label" "$wall" "$(med "$input.cpu")" \
     "$(med "$input.rss")" "$ins" "$cls" \
     "$(awk -v w="$wall" -v n="$n" -v a="$ins" -v b="$cls" 'BEGIN {print w / (n * (a + b) / 1000)}')"

@@ -23,6 +23,7 @@ public:
         // Points in the LiDAR frame, at the LiDAR's pose in the world: what kitti2rawlog
         // writes into a rawlog, read straight from the files.
         out.obs = pointCloudObservation(seq_.readScan(i));
+        out.obs->timestamp = mrpt::Clock::fromDouble(seq_.time(i));  // as kitti2rawlog stamps
         out.robot_pose = mrpt::poses::CPose3D::FromHomogeneousMatrix(seq_.pose(i).matrix());
         out.frame = i;
         return true;

@@ -66,6 +66,7 @@ void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::ap
             continue;  // counted as invalid, labelled moving, not written to a cloud
         (dyn[i] ? removed_cloud_ : kept_cloud_).add(x[i], y[i], z[i], intensity[i]);
     }
+    if (rawlog_) rawlog_->write(scan, dyn);
     if (view_)
         for (std::size_t i = 0; i < dyn.size(); ++i)
             view_->add(x[i], y[i], z[i],
@@ -114,6 +115,13 @@ void Outputs::pictureCovers(const hif::CHeightIntervalMap& map)
 std::pair<int, int> Outputs::writePicture(const std::string& file, const std::string& title) const
 {
     return view_ ? view_->write(file, title, false) : std::pair<int, int>{0, 0};
+}
+
+std::size_t Outputs::closeRawlog()
+{
+    if (!rawlog_) return 0;
+    rawlog_->close();
+    return rawlog_->scans;
 }
 
 void Outputs::close()

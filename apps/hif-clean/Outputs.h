@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "RawlogOut.h"
 #include "ScanSource.h"
 #include "hif/CHeightIntervalMap.h"
 #include "hif/apps/Cli.h"
@@ -53,6 +54,10 @@ public:
     /** Before the first scan is classified: about how many points the kept cloud will get (a
      *  guess: right to the number of digits, it saves a copy of that file). */
     void expectKept(std::size_t points) { kept_cloud_.expectCount(points); }
+    /** Also writes every scan without its dynamic points to `file`, an MRPT rawlog. */
+    void writeRawlog(const std::string& file) { rawlog_.emplace(file, 0); }
+    /** The cleaned rawlog, if written: completes it and says how many scans it holds. */
+    std::size_t closeRawlog();
     /** Also draws every point into a bird's-eye picture (see writePicture()). */
     void drawPicture() { view_.emplace(); }
     /** The picture will cover the map's area (so it need not grow as points come). */
@@ -74,4 +79,5 @@ private:
     std::vector<bool> written_;  ///< frame numbers written, to refuse a second scan of one
     std::vector<float> buf_[4];  ///< x, y, z, intensity of the current scan
     std::optional<hif::apps::TopView> view_;
+    std::optional<RawlogOut> rawlog_;
 };

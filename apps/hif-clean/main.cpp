@@ -93,6 +93,16 @@ struct Cli
                             "Do not draw map.png (the bird's-eye picture of kept and removed "
                             "points)",
                             cmd};
+    TCLAP::ValueArg<std::string> rawlog_out{
+        "",
+        "rawlog-out",
+        "Also write the scans without their dynamic points as an MRPT rawlog (observations: "
+        "frame comment, CObservationRobotPose, the scan), for rawlog-edit, RawLogViewer or "
+        "icp-slam",
+        false,
+        "",
+        "clean.rawlog",
+        cmd};
     TCLAP::SwitchArg scene{"", "scene",
                            "Also write map.3Dscene: the HIF map's intervals as boxes coloured "
                            "by P(static), for MRPT's SceneViewer3D",
@@ -151,6 +161,7 @@ struct Run
     /** The outputs, written aside and put in place when complete. */
     std::unique_ptr<hif::apps::StagedFolder> staged;
     std::unique_ptr<hif::apps::StagedFile> staged_dm;
+    std::unique_ptr<hif::apps::StagedFile> staged_rawlog;  ///< --rawlog-out
     mrpt::maps::CMultiMetricMap maps;
     hif::CHeightIntervalMap::Ptr hif_map;
 };
@@ -188,6 +199,9 @@ void setUp(Cli& cli, Run& run)
         run.staged_dm = std::make_unique<hif::apps::StagedFile>(
             run.dm_output, cli.overwrite.getValue(), "--overwrite");
     }
+    if (cli.rawlog_out.isSet())
+        run.staged_rawlog = std::make_unique<hif::apps::StagedFile>(
+            cli.rawlog_out.getValue(), cli.overwrite.getValue(), "--overwrite");
     run.cfg_file = cli.config.isSet() ? cli.config.getValue()
                                       : defaultConfig(run.online, run.source->isDynamicMapFolder());
     if (!fs::exists(run.cfg_file))
@@ -360,6 +374,7 @@ int runClean(Cli& cli)
             hif::apps::flagInRange(cli.first_frame.getValue(), "--first-frame", 0, 999999));
     Outputs out(dir, first_frame, std::move(static_files), std::move(removed_files));
     if (!cli.no_png.getValue()) out.drawPicture();
+    if (run.staged_rawlog) out.writeRawlog(run.staged_rawlog->path());
     Timings t;
     t.setup_s = msSince(t_start) / 1000.0;
     auto t_pass = Clock::now();
@@ -377,6 +392,7 @@ int runClean(Cli& cli)
     const auto t_files = Clock::now();
     malloc_trim(0);  // the scans' buffers, kept for reuse while scans came, go back now
     out.close();
+    const std::size_t rawlog_scans = out.closeRawlog();
     writeMap(*run.hif_map, dir + "/map.hifmap");
     std::ostringstream title;
     title << "hif-clean " << fs::path(run.input).filename().string() << ": " << t.scans
@@ -393,6 +409,12 @@ int runClean(Cli& cli)
     writeSummary(dir + "/summary.json", info, *run.hif_map, out, t);
     run.staged->commit();
     if (run.staged_dm) run.staged_dm->commit();
+    if (run.staged_rawlog)
+    {
+        run.staged_rawlog->commit();
+        std::cout << kTag << " wrote " << cli.rawlog_out.getValue() << ": " << rawlog_scans
+                  << " scans without their dynamic points" << std::endl;
+    }
     printReport(kTag, run.out_dir, format, run.dm_output, run.online, *run.hif_map, out, t);
     return 0;
 }
@@ -405,5 +427,8 @@ int main(int argc, char** argv)
     // then faulted in and zeroed again, scan after scan; kept in the heap they are reused.
     mallopt(M_MMAP_THRESHOLD, 256 << 20);
     mallopt(M_TRIM_THRESHOLD, 512 << 20);
+    // One heap for the reader thread and this one: what one frees the other reuses, and it
+    // goes back to the system before the last stage (a second arena kept 55 MB of it).
+    mallopt(M_ARENA_MAX, 1);
     return hif::apps::cliMain<Cli>(kTag.c_str(), argc, argv, runClean);
 }

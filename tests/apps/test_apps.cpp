@@ -611,3 +611,36 @@ INSTANTIATE_TEST_SUITE_P(Sequences, RealKitti,
                          ::testing::Values(std::make_tuple("01", 98.6, 95.0),
                                            std::make_tuple("03", 98.0, 98.0),
                                            std::make_tuple("04", 98.3, 95.0)));
+
+// --rawlog-out: the scans again without their dynamic points, a rawlog MRPT's own tools and
+// hif-clean read back (with the same poses and frame numbers), holding exactly the kept points.
+TEST_F(SyntheticPipeline, RawlogOutHoldsTheKeptPointsForMrptTools)
+{
+    const std::string d = root_ + "/rawlog_out";
+    fs::remove_all(d);
+    auto r = runApp("hif-clean", "-i " + root_ + "/seq -o " + d + "/out -q --no-png --rawlog-out " +
+                                     d + "/clean.rawlog");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const json first = readJson(d + "/out/summary.json");
+    // Refused without --overwrite, like every output.
+    r = runApp("hif-clean",
+               "-i " + root_ + "/seq -o " + d + "/out2 -q --rawlog-out " + d + "/clean.rawlog");
+    EXPECT_NE(r.code, 0);
+    EXPECT_NE(r.output.find("clean.rawlog' already exists"), std::string::npos) << r.output;
+    // Read back: the same scans (numbered as before), and only the points that were kept.
+    r = runApp("hif-clean", "-i " + d + "/clean.rawlog -o " + d + "/again -q --no-png");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const json again = readJson(d + "/again/summary.json");
+    EXPECT_EQ(again["scans"], first["scans"]);
+    EXPECT_EQ(again["points_in"], first["points_kept"]);
+    EXPECT_EQ(again["skipped_objects"], 0);
+    EXPECT_TRUE(fs::exists(d + "/again/predictions/000019.label"));
+    if (std::system("command -v rawlog-edit > /dev/null 2>&1") == 0)
+    {
+        const std::string cmd =
+            "rawlog-edit --info -i " + d + "/clean.rawlog > " + d + "/info.txt 2>&1";
+        ASSERT_EQ(std::system(cmd.c_str()), 0);
+        const std::string info = hif::test::bytesOf(d + "/info.txt");
+        EXPECT_NE(info.find("Overall number of objects         : 60"), std::string::npos) << info;
+    }
+}

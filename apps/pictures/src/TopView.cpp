@@ -70,10 +70,15 @@ void TopView::rebuild(double x0, double y0, std::size_t cols, std::size_t rows, 
     y1_ = y0_ + double(rows_) * res_;
 }
 
-void TopView::cover(double x0, double y0, double x1, double y1)
+void TopView::cover(double x0, double y0, double x1, double y1, int pixels)
 {
     if (!(x0 < x1 && y0 < y1)) return;
-    if (cols_ > 0)
+    if (cols_ == 0 && pixels > 0)
+    {
+        res_ = std::max(0.05, std::ceil(std::max(x1 - x0, y1 - y0) / pixels * 100.0) / 100.0);
+        inv_res_ = 1.0 / res_;
+    }
+    else if (cols_ > 0)
     {
         x0 = std::min(x0, x0_);
         y0 = std::min(y0, y0_);
@@ -207,7 +212,9 @@ std::pair<int, int> TopView::write(const std::string& file, const std::string& t
     char label[32];
     std::snprintf(label, sizeof label, "%g m", len);
     cv::putText(out, label, {20 + px + 10, out.rows - 19}, font, 0.6, kText, 1, cv::LINE_AA);
-    if (!cv::imwrite(file, out, {cv::IMWRITE_PNG_COMPRESSION, 1, cv::IMWRITE_PNG_STRATEGY, cv::IMWRITE_PNG_STRATEGY_RLE}))
+    if (!cv::imwrite(file, out,
+                     {cv::IMWRITE_PNG_COMPRESSION, 1, cv::IMWRITE_PNG_STRATEGY,
+                      cv::IMWRITE_PNG_STRATEGY_RLE}))
         throw std::runtime_error("cannot write '" + file + "'");
     return {out.cols, out.rows};
 }

@@ -31,8 +31,10 @@ public:
     explicit TopView(double resolution = 0.2, std::size_t max_cells = std::size_t{1} << 23);
 
     /** Makes room for [x0, x1) x [y0, y1) at once (the extent of a map known beforehand), so
-     *  that the cells are not grown point by point. */
-    void cover(double x0, double y0, double x1, double y1);
+     *  that the cells are not grown point by point. Before any point, it also sets the cells'
+     *  size so that the longer side spans about `pixels` cells (5 cm at the finest): the
+     *  picture then needs no scaling up. */
+    void cover(double x0, double y0, double x1, double y1, int pixels = 1300);
 
     void add(float x, float y, float z, Outcome outcome)
     {
