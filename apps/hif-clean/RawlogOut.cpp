@@ -47,6 +47,7 @@ mrpt::obs::CObservation::Ptr withoutDynamic(const mrpt::obs::CObservation& obs,
         auto copy = CObservation3DRangeScan::Create(*o3d);
         if (!copy->hasPoints3D) copy->unprojectInto(*copy);  // the points the map classified
         if (copy->points3D_x.size() != dyn.size()) throw sizeError(copy->points3D_x.size());
+        copy->resizePoints3DVectors(dyn.size());  // pixel indices too, if there were none
         std::size_t k = 0;
         for (std::size_t i = 0; i < dyn.size(); ++i)
             if (!dyn[i])
@@ -54,11 +55,11 @@ mrpt::obs::CObservation::Ptr withoutDynamic(const mrpt::obs::CObservation& obs,
                 copy->points3D_x[k] = copy->points3D_x[i];
                 copy->points3D_y[k] = copy->points3D_y[i];
                 copy->points3D_z[k] = copy->points3D_z[i];
+                copy->points3D_idxs_x[k] = copy->points3D_idxs_x[i];
+                copy->points3D_idxs_y[k] = copy->points3D_idxs_y[i];
                 ++k;
             }
         copy->resizePoints3DVectors(k);
-        copy->points3D_idxs_x.clear();
-        copy->points3D_idxs_y.clear();
         copy->hasPoints3D = true;
         copy->hasRangeImage = false;  // it would bring the dynamic points back
         return copy;

@@ -10,8 +10,12 @@
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CFileOutputStream.h>
 #include <mrpt/maps/CSimplePointsMap.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CObservation2DRangeScan.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/obs/CObservationRobotPose.h>
+#include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/opengl/COpenGLScene.h>
 #include <mrpt/serialization/CArchive.h>
 
@@ -642,5 +646,116 @@ TEST_F(SyntheticPipeline, RawlogOutHoldsTheKeptPointsForMrptTools)
         ASSERT_EQ(std::system(cmd.c_str()), 0);
         const std::string info = hif::test::bytesOf(d + "/info.txt");
         EXPECT_NE(info.find("Overall number of objects         : 60"), std::string::npos) << info;
+    }
+}
+
+// Rawlogs as other MRPT tools write them: sensory frames (actions, then a frame with the pose
+// and a 3D range scan) and observations with 2D laser scans. hif-clean cleans both, and its
+// --rawlog-out keeps each scan's kind: the 3D scan keeps its static points, the 2D scan marks
+// the ranges of its dynamic points invalid.
+TEST(HifClean, ReadsSensoryFramesAnd2DAnd3DScansAndWritesThemBack)
+{
+    using namespace mrpt::obs;
+    const std::string d = fresh("mrpt_kinds");
+    // A wall 6 m ahead and the ground, seen from a robot that moves 0.3 m a scan; a box passes
+    // in front of the wall in the first scan only.
+    const auto pointsOf = [](int s)
+    {
+        std::vector<mrpt::math::TPoint3D> p;
+        for (double a = -3.0; a <= 3.0; a += 0.1)
+            for (double z = 0.0; z <= 2.0; z += 0.1) p.push_back({6.0 - 0.3 * s, a, z - 1.0});
+        for (double x = 1.0; x <= 5.0; x += 0.1)
+            for (double a = -3.0; a <= 3.0; a += 0.1) p.push_back({x, a, -1.0});
+        if (s == 0)
+            for (double a = -0.5; a <= 0.5; a += 0.05)
+                for (double z = 0.0; z <= 1.0; z += 0.05) p.push_back({3.0, a, z - 0.8});
+        return p;
+    };
+    {
+        mrpt::io::CFileOutputStream f(d + "/frames3d.rawlog");
+        auto arch = mrpt::serialization::archiveFrom(f);
+        for (int s = 0; s < 5; ++s)
+        {
+            arch << mrpt::obs::CActionCollection();
+            mrpt::obs::CSensoryFrame sf;
+            auto pose = CObservationRobotPose::Create();
+            pose->pose.mean = mrpt::poses::CPose3D(0.3 * s, 0, 0, 0, 0, 0);
+            sf.insert(pose);
+            auto o3d = CObservation3DRangeScan::Create();
+            o3d->hasPoints3D = true;
+            const auto pts = pointsOf(s);
+            o3d->resizePoints3DVectors(pts.size());
+            for (std::size_t i = 0; i < pts.size(); ++i)
+            {
+                o3d->points3D_x[i] = float(pts[i].x);
+                o3d->points3D_y[i] = float(pts[i].y);
+                o3d->points3D_z[i] = float(pts[i].z);
+            }
+            sf.insert(o3d);
+            arch << sf;
+        }
+    }
+    {
+        mrpt::io::CFileOutputStream f(d + "/scans2d.rawlog");
+        auto arch = mrpt::serialization::archiveFrom(f);
+        for (int s = 0; s < 5; ++s)
+        {
+            auto pose = CObservationRobotPose::Create();
+            pose->pose.mean = mrpt::poses::CPose3D(0.3 * s, 0, 0, 0, 0, 0);
+            arch << *pose;
+            auto scan = CObservation2DRangeScan::Create();
+            scan->aperture = float(M_PI);
+            scan->resizeScan(181);
+            for (std::size_t i = 0; i < 181; ++i)
+            {
+                // The wall at x = 6 - 0.3 s, and, in the first scan, a box at 3 m across 20 rays.
+                const double ang = -M_PI / 2 + M_PI * double(i) / 180.0;
+                const double wall = (6.0 - 0.3 * s) / std::max(0.2, std::cos(ang));
+                const bool box = s == 0 && i >= 80 && i < 100;
+                scan->setScanRange(i, float(box ? 3.0 / std::cos(ang) : std::min(wall, 30.0)));
+                scan->setScanRangeValidity(i, std::cos(ang) > 0.2 || box);
+            }
+            arch << *scan;
+        }
+    }
+    for (const std::string kind : {"frames3d", "scans2d"})
+    {
+        SCOPED_TRACE(kind);
+        const std::string out = d + "/" + kind;
+        auto r = runApp("hif-clean", "-i " + d + "/" + kind + ".rawlog -o " + out +
+                                         " -q --no-png --rawlog-out " + out + ".clean.rawlog");
+        ASSERT_EQ(r.code, 0) << r.output;
+        const json s = readJson(out + "/summary.json");
+        EXPECT_EQ(s["scans"], 5);
+        EXPECT_GT(s["points_removed"].get<std::size_t>(), 0u) << "the box is removed";
+        // The cleaned rawlog: the same kind of scan, only the kept points.
+        mrpt::io::CFileGZInputStream in(out + ".clean.rawlog");
+        auto arch = mrpt::serialization::archiveFrom(in);
+        std::size_t points = 0, scans = 0;
+        for (;;)
+        {
+            mrpt::serialization::CSerializable::Ptr o;
+            try
+            {
+                o = arch.ReadObject();
+            }
+            catch (const mrpt::serialization::CExceptionEOF&)
+            {
+                break;
+            }
+            if (auto o3d = std::dynamic_pointer_cast<CObservation3DRangeScan>(o))
+            {
+                ++scans;
+                points += o3d->points3D_x.size();
+            }
+            if (auto o2d = std::dynamic_pointer_cast<CObservation2DRangeScan>(o))
+            {
+                ++scans;
+                for (std::size_t i = 0; i < o2d->getScanSize(); ++i)
+                    points += o2d->getScanRangeValidity(i) ? 1 : 0;
+            }
+        }
+        EXPECT_EQ(scans, 5u);
+        EXPECT_EQ(points, s["points_kept"].get<std::size_t>());
     }
 }
