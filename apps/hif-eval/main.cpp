@@ -16,11 +16,14 @@
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "hif/apps/Cli.h"
+#include "hif/apps/TopView.h"
 #include "hif/io/Breakdown.h"
 #include "hif/io/CloudFiles.h"
 #include "hif/io/FileError.h"
+#include "hif/io/KittiSequence.h"
 #include "hif/io/Labels.h"
 
 namespace fs = std::filesystem;
@@ -67,6 +70,17 @@ struct Cli
         false,
         3.0,
         "metres",
+        cmd};
+    TCLAP::ValueArg<std::string> png{
+        "",
+        "png",
+        "With --scans: also draw the scored scans from above into this PNG, in the world frame "
+        "(a KITTI folder's poses.txt, or the DynamicMap clouds as they are): kept static points "
+        "grey by height, removed moving ones red, missed moving ones yellow, wrongly removed "
+        "static ones blue",
+        false,
+        "",
+        "map.png",
         cmd};
     TCLAP::ValueArg<std::string> json{
         "", "json", "Also write the scores to this JSON file", false, "", "file.json", cmd};
@@ -123,6 +137,30 @@ std::vector<double> ranges(const std::string& dir, const std::string& stem, std:
     hif::io::throwFileError(dir, "has neither " + stem + ".bin nor " + stem + ".pcd");
 }
 
+/** The points of scan `stem` of `dir` in the world frame: a KITTI velodyne folder's at the
+ *  poses of its sequence (`seq`), a DynamicMap pcd folder's as they are. */
+hif::io::Cloud worldPoints(const std::string& dir, const std::string& stem,
+                           const std::optional<hif::io::KittiSequence>& seq)
+{
+    const fs::path pcd = fs::path(dir) / (stem + ".pcd");
+    if (fs::exists(pcd)) return hif::io::readPcd(pcd.string());
+    if (!seq)
+        hif::io::throwFileError(dir, "has no " + stem +
+                                         ".pcd, and is not the velodyne/ folder of "
+                                         "a KITTI sequence (for its poses)");
+    const std::size_t i = std::stoul(stem);
+    hif::io::Cloud c = seq->readScan(i);
+    const Eigen::Isometry3d& T = seq->pose(i);
+    for (std::size_t k = 0; k < c.size(); ++k)
+    {
+        const Eigen::Vector3d w = T * Eigen::Vector3d(c.x[k], c.y[k], c.z[k]);
+        c.x[k] = float(w.x());
+        c.y[k] = float(w.y());
+        c.z[k] = float(w.z());
+    }
+    return c;
+}
+
 void printRow(const char* name, const hif::io::Scores& s)
 {
     std::printf("%-14s %9zu %9zu %7.2f %7.2f %7.2f %7.2f\n", name, s.static_total, s.dynamic_total,
@@ -148,6 +186,17 @@ int run(Cli& cli)
     std::sort(names.begin(), names.end());
     if (names.empty()) throw std::runtime_error("no .label files in '" + pred_dir + "'");
 
+    std::optional<hif::apps::TopView> view;
+    std::optional<hif::io::KittiSequence> kitti;  // for the poses of velodyne/ scans
+    if (cli.png.isSet())
+    {
+        if (scan_dir.empty())
+            throw std::runtime_error("--png needs --scans (where the points are)");
+        view.emplace();
+        const fs::path seq_dir = fs::path(scan_dir).parent_path();
+        if (fs::path(scan_dir).filename() == "velodyne" && fs::exists(seq_dir / "poses.txt"))
+            kitti.emplace(seq_dir.string());
+    }
     hif::io::Breakdown total;
     hif::io::Scores with_ego;  ///< the DynamicMap benchmark's way (needs ranges)
     std::size_t without_truth = 0, scored = 0;
@@ -179,6 +228,25 @@ int run(Cli& cli)
             s.add(truth[i], removed, range[i]);
             const bool ego = range[i] < ego_radius;
             with_ego.add(ego ? 252u : truth[i], removed);
+        }
+        if (view)
+        {
+            using V = hif::apps::TopView;
+            const hif::io::Cloud w = worldPoints(scan_dir, stem, kitti);
+            if (w.size() != truth.size())
+                hif::io::throwFileError(scan_dir, stem + " does not hold the " +
+                                                      std::to_string(truth.size()) +
+                                                      " points of its label file");
+            for (std::size_t i = 0; i < w.size(); ++i)
+            {
+                const bool removed = hif::io::isPredictedMoving(pred[i]);
+                const uint32_t t = truth[i] & 0xFFFFu;
+                const bool judged = hif::io::isScored(t), moving = hif::io::isMovingClass(t);
+                view->add(w.x[i], w.y[i], w.z[i],
+                          !judged  ? (removed ? V::kRemoved : V::kKept)
+                          : moving ? (removed ? V::kRemoved : V::kMissedMoving)
+                                   : (removed ? V::kWronglyRemoved : V::kKept));
+            }
         }
         total += s;
         auto js = toJson(s.total);
@@ -228,6 +296,14 @@ int run(Cli& cli)
     std::printf("[hif-eval] %zu scans: SA %.2f  DA %.2f  AA %.2f  HA %.2f\n", scored,
                 total.total.sa(), total.total.da(), total.total.aa(), total.total.ha());
 
+    if (view)
+    {
+        char title[160];
+        std::snprintf(title, sizeof title, "hif-eval: %zu scans, SA %.2f  DA %.2f  AA %.2f", scored,
+                      total.total.sa(), total.total.da(), total.total.aa());
+        const auto [w, h] = view->write(cli.png.getValue(), title, true);
+        std::printf("[hif-eval] wrote %s (%d x %d)\n", cli.png.getValue().c_str(), w, h);
+    }
     if (cli.json.isSet())
     {
         nlohmann::ordered_json j;

@@ -154,8 +154,8 @@ std::pair<int, int> TopView::write(const std::string& file, const std::string& t
     }
     const int w = int(c1 - c0), h = int(r1 - r0);
     // At least min_width wide, whole pixels per cell, drawn straight into the picture below a
-    // title band; marks drawn a pixel wider than their cell so that a removed car reads at a
-    // glance, over the grey.
+    // title band; a cell with a removed (or missed, or wrongly removed) point shows that, over
+    // the grey.
     const int scale = std::max(1, (min_width + w - 1) / w);
     const int band = 40;
     cv::Mat out(h * scale + band, w * scale, CV_8UC3, kBackground);
@@ -180,7 +180,7 @@ std::pair<int, int> TopView::write(const std::string& file, const std::string& t
                 if (marks_[cell(r, c)] & (1u << k))
                 {
                     const int row = (h - 1 - r) * scale;
-                    const cv::Rect px = cv::Rect(c * scale - 1, row - 1, scale + 2, scale + 2) &
+                    const cv::Rect px = cv::Rect(c * scale, row, scale, scale) &
                                         cv::Rect(0, 0, map.cols, map.rows);
                     map(px).setTo(cv::Scalar(kColour[k][0], kColour[k][1], kColour[k][2]));
                 }
