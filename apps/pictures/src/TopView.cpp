@@ -180,8 +180,8 @@ std::pair<int, int> TopView::write(const std::string& file, const std::string& t
                 if (marks_[cell(r, c)] & (1u << k))
                 {
                     const int row = (h - 1 - r) * scale;
-                    const cv::Rect px = cv::Rect(c * scale, row, scale, scale) &
-                                        cv::Rect(0, 0, map.cols, map.rows);
+                    const cv::Rect px =
+                        cv::Rect(c * scale, row, scale, scale) & cv::Rect(0, 0, map.cols, map.rows);
                     map(px).setTo(cv::Scalar(kColour[k][0], kColour[k][1], kColour[k][2]));
                 }
     // Title above, legend and scale bar over the map.
