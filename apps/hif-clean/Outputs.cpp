@@ -65,6 +65,12 @@ void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::ap
         if (!std::isfinite(x[i]) || !std::isfinite(y[i]) || !std::isfinite(z[i]))
             continue;  // counted as invalid, labelled moving, not written to a cloud
         (dyn[i] ? removed_cloud_ : kept_cloud_).add(x[i], y[i], z[i], intensity[i]);
+        if (classes_)
+        {
+            const uint8_t* c = hif::apps::TopView::kRgb[dyn[i] ? hif::apps::TopView::kRemoved
+                                                               : hif::apps::TopView::kKept];
+            classes_->add(x[i], y[i], z[i], c[0], c[1], c[2]);
+        }
     }
     if (rawlog_) rawlog_->write(scan, dyn);
     if (view_)
@@ -128,4 +134,5 @@ void Outputs::close()
 {
     kept_cloud_.close();
     removed_cloud_.close();
+    if (classes_) classes_->close();
 }

@@ -54,6 +54,12 @@ public:
     /** Before the first scan is classified: about how many points the kept cloud will get (a
      *  guess: right to the number of digits, it saves a copy of that file). */
     void expectKept(std::size_t points) { kept_cloud_.expectCount(points); }
+    /** Also writes every point, coloured by its class (TopView::kRgb: kept light grey,
+     *  removed red), to `file`, a PLY. */
+    void writeClasses(const std::string& file)
+    {
+        classes_.emplace(std::vector<std::string>{file}, hif::io::CloudWriter::Record::XyzRgb);
+    }
     /** Also writes every scan without its dynamic points to `file`, an MRPT rawlog. */
     void writeRawlog(const std::string& file) { rawlog_.emplace(file, 0); }
     /** The cleaned rawlog, if written: completes it and says how many scans it holds. */
@@ -80,4 +86,5 @@ private:
     std::vector<float> buf_[4];  ///< x, y, z, intensity of the current scan
     std::optional<hif::apps::TopView> view_;
     std::optional<RawlogOut> rawlog_;
+    std::optional<hif::io::CloudWriter> classes_;
 };

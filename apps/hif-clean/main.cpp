@@ -103,6 +103,11 @@ struct Cli
         "",
         "clean.rawlog",
         cmd};
+    TCLAP::SwitchArg classes_ply{
+        "", "classes-ply",
+        "Also write classes.ply: every point (world frame) coloured by its class, kept light "
+        "grey, removed red",
+        cmd};
     TCLAP::SwitchArg scene{"", "scene",
                            "Also write map.3Dscene: the HIF map's intervals as boxes coloured "
                            "by P(static), for MRPT's SceneViewer3D",
@@ -181,7 +186,7 @@ void setUp(Cli& cli, Run& run)
         run.out_dir,
         std::vector<std::string>{"summary.json", "map.hifmap", "static_map.ply", "static_map.pcd",
                                  "removed.ply", "removed.pcd", "predictions", "map.png",
-                                 "map.3Dscene"},
+                                 "map.3Dscene", "classes.ply"},
         cli.overwrite.getValue(), "--overwrite");
 
     run.source = hif::apps::openScanSource(run.input,
@@ -375,6 +380,7 @@ int runClean(Cli& cli)
     Outputs out(dir, first_frame, std::move(static_files), std::move(removed_files));
     if (!cli.no_png.getValue()) out.drawPicture();
     if (run.staged_rawlog) out.writeRawlog(run.staged_rawlog->path());
+    if (cli.classes_ply.getValue()) out.writeClasses(dir + "/classes.ply");
     Timings t;
     t.setup_s = msSince(t_start) / 1000.0;
     auto t_pass = Clock::now();

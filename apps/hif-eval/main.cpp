@@ -82,6 +82,16 @@ struct Cli
         "",
         "map.png",
         cmd};
+    TCLAP::ValueArg<std::string> classes_ply{
+        "",
+        "classes-ply",
+        "With --scans: also write every scored scan's points (world frame, as for --png) to "
+        "this PLY, coloured by outcome as in the picture (kept light grey, removed moving red, "
+        "missed moving yellow, wrongly removed static blue)",
+        false,
+        "",
+        "classes.ply",
+        cmd};
     TCLAP::ValueArg<std::string> json{
         "", "json", "Also write the scores to this JSON file", false, "", "file.json", cmd};
     TCLAP::SwitchArg quiet{"q", "quiet", "Print the totals only, not every scan", cmd};
@@ -188,11 +198,15 @@ int run(Cli& cli)
 
     std::optional<hif::apps::TopView> view;
     std::optional<hif::io::KittiSequence> kitti;  // for the poses of velodyne/ scans
-    if (cli.png.isSet())
+    std::optional<hif::io::CloudWriter> outcome_cloud;
+    if (cli.png.isSet() || cli.classes_ply.isSet())
     {
         if (scan_dir.empty())
-            throw std::runtime_error("--png needs --scans (where the points are)");
-        view.emplace();
+            throw std::runtime_error("--png and --classes-ply need --scans (where the points are)");
+        if (cli.png.isSet()) view.emplace();
+        if (cli.classes_ply.isSet())
+            outcome_cloud.emplace(std::vector<std::string>{cli.classes_ply.getValue()},
+                                  hif::io::CloudWriter::Record::XyzRgb);
         const fs::path seq_dir = fs::path(scan_dir).parent_path();
         if (fs::path(scan_dir).filename() == "velodyne" && fs::exists(seq_dir / "poses.txt"))
             kitti.emplace(seq_dir.string());
@@ -229,7 +243,7 @@ int run(Cli& cli)
             const bool ego = range[i] < ego_radius;
             with_ego.add(ego ? 252u : truth[i], removed);
         }
-        if (view)
+        if (view || outcome_cloud)
         {
             using V = hif::apps::TopView;
             const hif::io::Cloud w = worldPoints(scan_dir, stem, kitti);
@@ -242,10 +256,14 @@ int run(Cli& cli)
                 const bool removed = hif::io::isPredictedMoving(pred[i]);
                 const uint32_t t = truth[i] & 0xFFFFu;
                 const bool judged = hif::io::isScored(t), moving = hif::io::isMovingClass(t);
-                view->add(w.x[i], w.y[i], w.z[i],
-                          !judged  ? (removed ? V::kRemoved : V::kKept)
-                          : moving ? (removed ? V::kRemoved : V::kMissedMoving)
-                                   : (removed ? V::kWronglyRemoved : V::kKept));
+                const V::Outcome o = !judged  ? (removed ? V::kRemoved : V::kKept)
+                                     : moving ? (removed ? V::kRemoved : V::kMissedMoving)
+                                              : (removed ? V::kWronglyRemoved : V::kKept);
+                if (view) view->add(w.x[i], w.y[i], w.z[i], o);
+                if (outcome_cloud && std::isfinite(w.x[i]) && std::isfinite(w.y[i]) &&
+                    std::isfinite(w.z[i]))
+                    outcome_cloud->add(w.x[i], w.y[i], w.z[i], V::kRgb[o][0], V::kRgb[o][1],
+                                       V::kRgb[o][2]);
             }
         }
         total += s;
@@ -296,6 +314,12 @@ int run(Cli& cli)
     std::printf("[hif-eval] %zu scans: SA %.2f  DA %.2f  AA %.2f  HA %.2f\n", scored,
                 total.total.sa(), total.total.da(), total.total.aa(), total.total.ha());
 
+    if (outcome_cloud)
+    {
+        outcome_cloud->close();
+        std::printf("[hif-eval] wrote %s (%zu points)\n", cli.classes_ply.getValue().c_str(),
+                    outcome_cloud->count());
+    }
     if (view)
     {
         char title[160];

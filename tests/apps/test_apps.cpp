@@ -26,11 +26,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "app_runner.h"
 #include "hif/CHeightIntervalMap.h"
+#include "hif/apps/TopView.h"
 #include "hif/io/CloudFiles.h"
 #include "hif/io/KittiSequence.h"
 #include "hif/io/Labels.h"
@@ -46,6 +48,27 @@ using hif::test::runApp;
 
 namespace
 {
+/** How many points of each colour (red, green, blue packed) a coloured PLY holds. */
+std::map<uint32_t, std::size_t> coloursOf(const std::string& file)
+{
+    std::ifstream f(file, std::ios::binary);
+    EXPECT_TRUE(f.good()) << file;
+    for (std::string line; std::getline(f, line) && line != "end_header";)
+    {
+    }
+    std::map<uint32_t, std::size_t> n;
+    for (char rec[15]; f.read(rec, 15);)
+        ++n[(uint32_t(uint8_t(rec[12])) << 16) | (uint32_t(uint8_t(rec[13])) << 8) |
+            uint8_t(rec[14])];
+    return n;
+}
+
+uint32_t packed(hif::apps::TopView::Outcome o)
+{
+    const uint8_t* c = hif::apps::TopView::kRgb[o];
+    return (uint32_t(c[0]) << 16) | (uint32_t(c[1]) << 8) | c[2];
+}
+
 /** The vertex count a PLY header states. */
 std::size_t plyVertexCount(const std::string& file)
 {
@@ -201,7 +224,8 @@ TEST_F(SyntheticPipeline, OfflineAndOnlineCleaningScoreAndWriteEverything)
         ASSERT_EQ(r.code, 0) << r.output;
         // Offline, also the picture of the four outcomes.
         const std::string png_flags =
-            mode == "offline" ? " --scans " + root_ + "/seq/velodyne --png " + out + "/outcomes.png"
+            mode == "offline" ? " --scans " + root_ + "/seq/velodyne --png " + out +
+                                    "/outcomes.png --classes-ply " + out + "/outcomes.ply"
                               : "";
         const auto e =
             runApp("hif-eval", "--labels " + root_ + "/seq/labels --predictions " + out +
@@ -278,6 +302,14 @@ TEST_F(SyntheticPipeline, OfflineAndOnlineCleaningScoreAndWriteEverything)
                       std::string::npos)
                 << e.output;
             EXPECT_GE(outcomes.cols, 1200);
+            // The coloured PLY of the outcomes agrees with the scores.
+            using V = hif::apps::TopView;
+            const auto colours = coloursOf(out + "/outcomes.ply");
+            EXPECT_EQ(
+                colours.at(packed(V::kMissedMoving)),
+                s["dynamic_total"].get<std::size_t>() - s["dynamic_removed"].get<std::size_t>());
+            EXPECT_EQ(colours.at(packed(V::kWronglyRemoved)),
+                      s["static_total"].get<std::size_t>() - s["static_kept"].get<std::size_t>());
         }
         // The saved map loads back through MRPT's class factory, as the one that was used.
         mrpt::io::CFileGZInputStream f(out + "/map.hifmap");
@@ -297,7 +329,7 @@ TEST_F(SyntheticPipeline, ThreadsAndHeldScansGiveIdenticalResults)
     auto r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + a + " -q --threads 1");
     ASSERT_EQ(r.code, 0) << r.output;
     r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + b +
-                                " -q --threads 2 --hold-scans --no-png --scene");
+                                " -q --threads 2 --hold-scans --no-png --scene --classes-ply");
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_TRUE(fs::exists(a + "/map.png"));
     EXPECT_FALSE(fs::exists(b + "/map.png"));
@@ -305,6 +337,12 @@ TEST_F(SyntheticPipeline, ThreadsAndHeldScansGiveIdenticalResults)
     mrpt::opengl::COpenGLScene scene;
     ASSERT_TRUE(scene.loadFromFile(b + "/map.3Dscene"));
     EXPECT_TRUE(scene.getByName("hif::CHeightIntervalMap"));
+    // Every point, coloured by its class.
+    const json sb0 = readJson(b + "/summary.json");
+    const auto colours = coloursOf(b + "/classes.ply");
+    EXPECT_EQ(colours.at(packed(hif::apps::TopView::kRemoved)),
+              sb0["points_removed"].get<std::size_t>() - sb0["points_invalid"].get<std::size_t>());
+    EXPECT_EQ(colours.at(packed(hif::apps::TopView::kKept)), sb0["points_kept"].get<std::size_t>());
     auto bytes = [](const std::string& file)
     {
         std::ifstream in(file, std::ios::binary);

@@ -127,3 +127,38 @@ TEST(CloudWriter, AnUnfinishedWriterLeavesNoFileAndExpectsOnlyBeforeThePoints)
     }
     EXPECT_THROW(hif::io::CloudWriter({d + "/a.las"}), std::runtime_error);
 }
+
+TEST(CloudWriter, ColouredPointsMakeAColouredPly)
+{
+    const std::string d = freshDir("coloured");
+    for (const std::optional<std::size_t> expected : {std::optional<std::size_t>{}, {3}, {40}})
+    {
+        const std::vector<std::string> files{d + "/a.ply", d + "/b.ply"};
+        {
+            hif::io::CloudWriter w(files, hif::io::CloudWriter::Record::XyzRgb);
+            if (expected) w.expectCount(*expected);
+            w.add(1.5f, -2.0f, 0.25f, 255, 0, 7);
+            w.add(0.0f, 3.0f, -1.0f, 1, 2, 3);
+            w.add(9.0f, 9.0f, 9.0f, 200, 200, 200);
+            w.close();
+        }
+        std::string body;
+        const auto point = [&body](float x, float y, float z, unsigned r, unsigned g, unsigned b)
+        {
+            const float xyz[3] = {x, y, z};
+            body.append(reinterpret_cast<const char*>(xyz), 12);
+            body += {char(r), char(g), char(b)};
+        };
+        point(1.5f, -2.0f, 0.25f, 255, 0, 7);
+        point(0.0f, 3.0f, -1.0f, 1, 2, 3);
+        point(9.0f, 9.0f, 9.0f, 200, 200, 200);
+        const std::string ref =
+            "ply\nformat binary_little_endian 1.0\ncomment written by hif\nelement vertex 3\n"
+            "property float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty "
+            "uchar green\nproperty uchar blue\nend_header\n" +
+            body;
+        for (const std::string& f : files) EXPECT_EQ(bytesOf(f), ref) << f;
+    }
+    EXPECT_THROW(hif::io::CloudWriter({d + "/c.pcd"}, hif::io::CloudWriter::Record::XyzRgb),
+                 std::runtime_error);
+}

@@ -21,9 +21,15 @@ constexpr float kNone = std::numeric_limits<float>::quiet_NaN();
 // BGR
 const cv::Scalar kBackground(24, 24, 24);
 const cv::Scalar kText(235, 235, 235);
-const cv::Vec3b kColour[4] = {{0, 0, 0}, {40, 40, 230}, {0, 215, 255}, {255, 160, 0}};
+
 const char* const kName[4] = {"kept", "removed", "moving, missed (kept)",
                               "static, wrongly removed"};
+
+cv::Scalar bgr(int outcome)
+{
+    const uint8_t* c = TopView::kRgb[outcome];
+    return {double(c[2]), double(c[1]), double(c[0])};
+}
 
 /** 1, 2 or 5 times a power of ten, about a fifth of `span`. */
 double niceLength(double span)
@@ -182,7 +188,7 @@ std::pair<int, int> TopView::write(const std::string& file, const std::string& t
                     const int row = (h - 1 - r) * scale;
                     const cv::Rect px =
                         cv::Rect(c * scale, row, scale, scale) & cv::Rect(0, 0, map.cols, map.rows);
-                    map(px).setTo(cv::Scalar(kColour[k][0], kColour[k][1], kColour[k][2]));
+                    map(px).setTo(bgr(k));
                 }
     // Title above, legend and scale bar over the map.
     const auto font = cv::FONT_HERSHEY_SIMPLEX;
@@ -196,8 +202,7 @@ std::pair<int, int> TopView::write(const std::string& file, const std::string& t
     for (int k = 0; k < n; ++k)
     {
         const int y = legend.y + 24 + 26 * k;
-        const cv::Scalar col = k == 0 ? cv::Scalar(200, 200, 200)
-                                      : cv::Scalar(kColour[k][0], kColour[k][1], kColour[k][2]);
+        const cv::Scalar col = bgr(k);
         cv::rectangle(out, cv::Rect(legend.x + 10, y - 13, 16, 16), col, cv::FILLED);
         cv::putText(out, k == 0 ? heights : kName[k], {legend.x + 36, y}, font, 0.5, kText, 1,
                     cv::LINE_AA);

@@ -98,13 +98,18 @@ void writeHeaderAndCopy(const std::string& file, const std::string& header, cons
 }
 }  // namespace
 
-CloudWriter::CloudWriter(std::vector<std::string> files) : files_(std::move(files))
+CloudWriter::CloudWriter(std::vector<std::string> files, Record record)
+    : files_(std::move(files)), record_(record)
 {
     if (files_.empty()) throw std::invalid_argument("CloudWriter: no output file");
     for (const std::string& file : files_)
+    {
         if (!endsWith(file, ".pcd") && !endsWith(file, ".ply"))
             throwFileError(file, "has an unknown point-cloud extension (use .ply or .pcd)");
-    buf_.resize(4 * 8192);
+        if (record_ == Record::XyzRgb && !endsWith(file, ".ply"))
+            throwFileError(file, "cannot hold coloured points (write a .ply)");
+    }
+    buf_.resize(std::size_t{1} << 17);
 }
 
 CloudWriter::~CloudWriter()
@@ -146,7 +151,7 @@ void CloudWriter::open()
 void CloudWriter::flush()
 {
     if (!f_) open();
-    if (used_ > 0 && std::fwrite(buf_.data(), sizeof(float), used_, f_) != used_)
+    if (used_ > 0 && std::fwrite(buf_.data(), 1, used_, f_) != used_)
         throwFileError(body_file_, "could not be written (disk full?)");
     used_ = 0;
 }
@@ -167,8 +172,11 @@ std::string CloudWriter::header(const std::string& file, std::size_t count) cons
     const std::string n = std::to_string(count);
     if (endsWith(file, ".ply"))
         return "ply\nformat binary_little_endian 1.0\ncomment written by hif\nelement vertex " + n +
-               "\nproperty float x\nproperty float y\nproperty float z\nproperty float "
-               "intensity\nend_header\n";
+               "\nproperty float x\nproperty float y\nproperty float z\n" +
+               (record_ == Record::XyzRgb
+                    ? "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+                    : "property float intensity\n") +
+               "end_header\n";
     return "# .PCD v0.7 - Point Cloud Data file format (written by hif)\nVERSION 0.7\n"
            "FIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH " +
            n + "\nHEIGHT 1\nVIEWPOINT " + viewpointText() + "\nPOINTS " + n + "\nDATA binary\n";
@@ -183,7 +191,7 @@ void CloudWriter::close()
     closed_ = true;
     if (failed) throwFileError(body_file_, "could not be closed (disk full?)");
 
-    const std::size_t bytes = count_ * 4 * sizeof(float);
+    const std::size_t bytes = count_ * (record_ == Record::XyzRgb ? 15 : 16);
     std::size_t first = 0;  // the files still to write
     if (expected_)
     {

@@ -26,6 +26,11 @@ public:
         kWronglyRemoved = 3,  ///< a static point that was removed (ground truth given)
     };
 
+    /** The colour of each outcome (red, green, blue), as the picture's legend shows it (kept
+     *  points are drawn in grey by height there, light grey elsewhere). */
+    static constexpr uint8_t kRgb[4][3] = {
+        {200, 200, 200}, {230, 40, 40}, {255, 215, 0}, {0, 160, 255}};
+
     /** Cells of `resolution` metres; coarser (twice, as often as needed) when the area would
      *  need more than `max_cells`. */
     explicit TopView(double resolution = 0.2, std::size_t max_cells = std::size_t{1} << 23);
