@@ -11,6 +11,7 @@
 #include <mrpt/obs/CObservationComment.h>
 #include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/obs/CObservationRobotPose.h>
+#include <mrpt/obs/CObservationVelodyneScan.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include <stdexcept>
@@ -62,6 +63,31 @@ mrpt::obs::CObservation::Ptr withoutDynamic(const mrpt::obs::CObservation& obs,
         copy->resizePoints3DVectors(k);
         copy->hasPoints3D = true;
         copy->hasRangeImage = false;  // it would bring the dynamic points back
+        return copy;
+    }
+    if (const auto* velo = dynamic_cast<const CObservationVelodyneScan*>(&obs))
+    {
+        auto copy = CObservationVelodyneScan::Create(*velo);
+        if (copy->point_cloud.size() == 0) copy->generatePointCloud();  // as the map did
+        auto& pc = copy->point_cloud;
+        if (pc.size() != dyn.size()) throw sizeError(pc.size());
+        const auto keep = [&dyn](auto& v)
+        {
+            if (v.size() != dyn.size()) return v.clear();  // not filled by this source
+            std::size_t k = 0;
+            for (std::size_t i = 0; i < dyn.size(); ++i)
+                if (!dyn[i]) v[k++] = v[i];
+            v.resize(k);
+        };
+        keep(pc.x);
+        keep(pc.y);
+        keep(pc.z);
+        keep(pc.intensity);
+        keep(pc.timestamp);
+        keep(pc.azimuth);
+        keep(pc.laser_id);
+        pc.pointsForLaserID.clear();  // indices into the points as they were
+        copy->scan_packets.clear();   // they would bring the dynamic points back
         return copy;
     }
     if (const auto* o2d = dynamic_cast<const CObservation2DRangeScan*>(&obs))

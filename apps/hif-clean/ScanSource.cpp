@@ -10,6 +10,7 @@
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/obs/CObservationRobotPose.h>
+#include <mrpt/obs/CObservationVelodyneScan.h>
 
 #include <filesystem>
 #include <stdexcept>
@@ -22,7 +23,7 @@ bool isScan(const mrpt::obs::CObservation& obs)
 {
     using namespace mrpt::obs;
     return IS_CLASS(obs, CObservationPointCloud) || IS_CLASS(obs, CObservation3DRangeScan) ||
-           IS_CLASS(obs, CObservation2DRangeScan);
+           IS_CLASS(obs, CObservation2DRangeScan) || IS_CLASS(obs, CObservationVelodyneScan);
 }
 
 namespace

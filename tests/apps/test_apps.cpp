@@ -15,6 +15,7 @@
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/obs/CObservationRobotPose.h>
+#include <mrpt/obs/CObservationVelodyneScan.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/opengl/COpenGLScene.h>
 #include <mrpt/serialization/CArchive.h>
@@ -704,10 +705,10 @@ TEST_F(SyntheticPipeline, RawlogOutHoldsTheKeptPointsForMrptTools)
 }
 
 // Rawlogs as other MRPT tools write them: sensory frames (actions, then a frame with the pose
-// and a 3D range scan) and observations with 2D laser scans. hif-clean cleans both, and its
-// --rawlog-out keeps each scan's kind: the 3D scan keeps its static points, the 2D scan marks
-// the ranges of its dynamic points invalid.
-TEST(HifClean, ReadsSensoryFramesAnd2DAnd3DScansAndWritesThemBack)
+// and a 3D range scan), observations with 2D laser scans, and Velodyne scans with their points.
+// hif-clean cleans each, and its --rawlog-out keeps each scan's kind: the 3D and Velodyne scans
+// keep their static points, the 2D scan marks the ranges of its dynamic points invalid.
+TEST(HifClean, ReadsSensoryFramesAnd2DAnd3DAndVelodyneScansAndWritesThemBack)
 {
     using namespace mrpt::obs;
     const std::string d = fresh("mrpt_kinds");
@@ -772,7 +773,28 @@ TEST(HifClean, ReadsSensoryFramesAnd2DAnd3DScansAndWritesThemBack)
             arch << *scan;
         }
     }
-    for (const std::string kind : {"frames3d", "scans2d"})
+    {
+        mrpt::io::CFileOutputStream f(d + "/velodyne.rawlog");
+        auto arch = mrpt::serialization::archiveFrom(f);
+        for (int s = 0; s < 5; ++s)
+        {
+            auto pose = CObservationRobotPose::Create();
+            pose->pose.mean = mrpt::poses::CPose3D(0.3 * s, 0, 0, 0, 0, 0);
+            arch << *pose;
+            // As the Velodyne driver leaves it after generatePointCloud(): the points (and here
+            // no raw packets).
+            auto velo = CObservationVelodyneScan::Create();
+            for (const auto& p : pointsOf(s))
+            {
+                velo->point_cloud.x.push_back(float(p.x));
+                velo->point_cloud.y.push_back(float(p.y));
+                velo->point_cloud.z.push_back(float(p.z));
+                velo->point_cloud.intensity.push_back(100);
+            }
+            arch << *velo;
+        }
+    }
+    for (const std::string kind : {"frames3d", "scans2d", "velodyne"})
     {
         SCOPED_TRACE(kind);
         const std::string out = d + "/" + kind;
@@ -801,6 +823,12 @@ TEST(HifClean, ReadsSensoryFramesAnd2DAnd3DScansAndWritesThemBack)
             {
                 ++scans;
                 points += o3d->points3D_x.size();
+            }
+            if (auto velo = std::dynamic_pointer_cast<CObservationVelodyneScan>(o))
+            {
+                ++scans;
+                points += velo->point_cloud.size();
+                EXPECT_EQ(velo->point_cloud.intensity.size(), velo->point_cloud.size());
             }
             if (auto o2d = std::dynamic_pointer_cast<CObservation2DRangeScan>(o))
             {

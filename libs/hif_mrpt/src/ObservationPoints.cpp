@@ -10,6 +10,7 @@
 #include <mrpt/obs/CObservation2DRangeScan.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationPointCloud.h>
+#include <mrpt/obs/CObservationVelodyneScan.h>
 
 #include <cmath>
 
@@ -29,7 +30,8 @@ bool isSupported(const mrpt::obs::CObservation& obs)
     using namespace mrpt::obs;
     return dynamic_cast<const CObservationPointCloud*>(&obs) != nullptr ||
            dynamic_cast<const CObservation3DRangeScan*>(&obs) != nullptr ||
-           dynamic_cast<const CObservation2DRangeScan*>(&obs) != nullptr;
+           dynamic_cast<const CObservation2DRangeScan*>(&obs) != nullptr ||
+           dynamic_cast<const CObservationVelodyneScan*>(&obs) != nullptr;
 }
 
 bool sensorPoints(const mrpt::obs::CObservation& obs, SensorPoints& out)
@@ -67,6 +69,24 @@ bool sensorPoints(const mrpt::obs::CObservation& obs, SensorPoints& out)
         storage[1].assign(pts.getPointsBufferRef_y().begin(), pts.getPointsBufferRef_y().end());
         storage[2].assign(pts.getPointsBufferRef_z().begin(), pts.getPointsBufferRef_z().end());
         fromStorage();
+        return true;
+    }
+    if (const auto* velo = dynamic_cast<const CObservationVelodyneScan*>(&obs))
+    {
+        out.sensor_pose = velo->sensorPose;
+        if (velo->point_cloud.size() == 0 && !velo->scan_packets.empty())
+        {
+            // Raw packets only: MRPT turns them into points (its default parameters).
+            CObservationVelodyneScan copy = *velo;
+            copy.generatePointCloud();
+            storage[0] = std::move(copy.point_cloud.x);
+            storage[1] = std::move(copy.point_cloud.y);
+            storage[2] = std::move(copy.point_cloud.z);
+            fromStorage();
+            return true;
+        }
+        const auto& pc = velo->point_cloud;
+        out.view = {pc.x.data(), pc.y.data(), pc.z.data(), pc.size()};
         return true;
     }
     if (const auto* o2d = dynamic_cast<const CObservation2DRangeScan*>(&obs))
