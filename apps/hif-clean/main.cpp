@@ -8,12 +8,8 @@
  */
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 #include <mrpt/config/CConfigFile.h>
-#include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/maps/CMultiMetricMap.h>
 #include <mrpt/obs/CObservationPointCloud.h>
-#include <mrpt/opengl/COpenGLScene.h>
-#include <mrpt/opengl/CSetOfObjects.h>
-#include <mrpt/serialization/CArchive.h>
 
 #include <malloc.h>
 
@@ -336,24 +332,6 @@ void classifyAll(Run& run, std::vector<hif::apps::Scan>& held, Outputs& out, std
     progress.finish();
 }
 
-void writeMap(const hif::CHeightIntervalMap& map, const std::string& file)
-{
-    mrpt::io::CFileGZOutputStream f;
-    if (!f.open(file, 1)) throw std::runtime_error("Error writing to target file '" + file + "'");
-    auto arch = mrpt::serialization::archiveFrom(f);
-    arch << map;
-}
-
-/** The map's intervals as a scene that SceneViewer3D opens. */
-void writeScene(const hif::CHeightIntervalMap& map, const std::string& file)
-{
-    mrpt::opengl::COpenGLScene scene;
-    auto objs = mrpt::opengl::CSetOfObjects::Create();
-    map.getVisualizationInto(*objs);
-    scene.insert(objs);
-    if (!scene.saveToFile(file)) throw std::runtime_error("cannot write '" + file + "'");
-}
-
 int runClean(Cli& cli)
 {
     const auto t_start = Clock::now();
@@ -399,13 +377,13 @@ int runClean(Cli& cli)
     malloc_trim(0);  // the scans' buffers, kept for reuse while scans came, go back now
     out.close();
     const std::size_t rawlog_scans = out.closeRawlog();
-    writeMap(*run.hif_map, dir + "/map.hifmap");
+    run.hif_map->saveToFile(dir + "/map.hifmap");
     std::ostringstream title;
     title << "hif-clean " << fs::path(run.input).filename().string() << ": " << t.scans
           << " scans, " << out.points_kept << " points kept, " << out.points_removed
           << " removed (red)";
     out.writePicture(dir + "/map.png", title.str());
-    if (cli.scene.getValue()) writeScene(*run.hif_map, dir + "/map.3Dscene");
+    if (cli.scene.getValue()) run.hif_map->saveSceneToFile(dir + "/map.3Dscene");
     t.finish_s = msSince(t_files) / 1000.0;
     t.files_ms = msSince(t_files) + out.write_ms_total;
     t.total_s = msSince(t_start) / 1000.0;

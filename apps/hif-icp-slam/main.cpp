@@ -7,10 +7,8 @@
  */
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 #include <mrpt/config/CConfigFile.h>
-#include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/maps/CMultiMetricMap.h>
 #include <mrpt/poses/CPose3DPDFGaussian.h>
-#include <mrpt/serialization/CArchive.h>
 #include <mrpt/slam/CICP.h>
 
 #include <filesystem>
@@ -258,14 +256,7 @@ int run(Cli& cli)
 
     cloud.close();
     hif::slam::writeKittiPoses(staged.path() + "/poses_kitti.txt", poses);
-    if (use_hif)
-    {
-        mrpt::io::CFileGZOutputStream f;
-        if (!f.open(staged.path() + "/map.hifmap", 1))
-            throw std::runtime_error("cannot write '" + out_dir + "/map.hifmap'");
-        auto arch = mrpt::serialization::archiveFrom(f);
-        arch << *hif_map;
-    }
+    if (use_hif) hif_map->saveToFile(staged.path() + "/map.hifmap");
     const std::optional<double> rmse =
         all_truth ? hif::slam::trajectoryRmse(poses, truth) : std::nullopt;
     const double rmse_m = rmse.value_or(-1.0);

@@ -4,6 +4,7 @@
  * @brief  Serialization of the map (versioned; every version still read), and its text and
  *         .3Dscene representation.
  */
+#include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/opengl/COpenGLScene.h>
 #include <mrpt/opengl/CSetOfObjects.h>
 #include <mrpt/serialization/CArchive.h>
@@ -141,11 +142,23 @@ void CHeightIntervalMap::saveMetricMapRepresentationToFile(const std::string& pr
     }
     if (!f) THROW_EXCEPTION_FMT("Error writing to target file '%s'", txt.c_str());
 
-    const std::string scene_file = prefix + "_3D.3Dscene";
+    saveSceneToFile(prefix + "_3D.3Dscene");
+}
+
+void CHeightIntervalMap::saveSceneToFile(const std::string& file) const
+{
     mrpt::opengl::COpenGLScene scene;
     auto objs = mrpt::opengl::CSetOfObjects::Create();
     getVisualizationInto(*objs);
     scene.insert(objs);
-    if (!scene.saveToFile(scene_file))
-        THROW_EXCEPTION_FMT("Error writing to target file '%s'", scene_file.c_str());
+    if (!scene.saveToFile(file))
+        throw std::runtime_error("Error writing to target file '" + file + "'");
+}
+
+void CHeightIntervalMap::saveToFile(const std::string& file) const
+{
+    mrpt::io::CFileGZOutputStream f;
+    if (!f.open(file, 1)) throw std::runtime_error("Error writing to target file '" + file + "'");
+    auto arch = mrpt::serialization::archiveFrom(f);
+    arch << *this;
 }

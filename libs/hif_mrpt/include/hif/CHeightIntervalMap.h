@@ -158,6 +158,13 @@ public:
     /** Writes `<prefix>_intervals.txt` (one interval per line: x_min y_min x_max y_max z_bottom
      *  z_top p_static) and `<prefix>_3D.3Dscene` (the visualization). */
     void saveMetricMapRepresentationToFile(const std::string& filNamePrefix) const override;
+    /** Writes the map MRPT-serialized and gzip-compressed (hif-clean's map.hifmap); read it
+     *  back with mrpt::io::CFileGZInputStream and CArchive::ReadObject(). Throws
+     *  std::runtime_error naming the file if it cannot be written. */
+    void saveToFile(const std::string& file) const;
+    /** Writes getVisualizationInto()'s boxes as a scene that MRPT's SceneViewer3D opens. Throws
+     *  std::runtime_error naming the file if it cannot be written. */
+    void saveSceneToFile(const std::string& file) const;
     /** Fraction of the other map's points (a CPointsMap, placed at otherMapPose) that lie in a
      *  static interval of this map, within params.maxDistForCorr vertically. 0 for other maps. */
     float compute3DMatchingRatio(const mrpt::maps::CMetricMap* otherMap,
