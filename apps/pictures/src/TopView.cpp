@@ -76,6 +76,17 @@ void TopView::rebuild(double x0, double y0, std::size_t cols, std::size_t rows, 
     y1_ = y0_ + double(rows_) * res_;
 }
 
+void TopView::resizeTo(double x0, double y0, double x1, double y1)
+{
+    double res = res_;
+    while (std::ceil((x1 - x0) / res) * std::ceil((y1 - y0) / res) > double(max_cells_)) res *= 2;
+    // Cell edges stay on multiples of the resolution.
+    x0 = std::floor(x0 / res) * res;
+    y0 = std::floor(y0 / res) * res;
+    rebuild(x0, y0, static_cast<std::size_t>(std::ceil((x1 - x0) / res)),
+            static_cast<std::size_t>(std::ceil((y1 - y0) / res)), res);
+}
+
 void TopView::cover(double x0, double y0, double x1, double y1, int pixels)
 {
     if (!(x0 < x1 && y0 < y1)) return;
@@ -91,12 +102,7 @@ void TopView::cover(double x0, double y0, double x1, double y1, int pixels)
         x1 = std::max(x1, x1_);
         y1 = std::max(y1, y1_);
     }
-    double res = res_;
-    while (std::ceil((x1 - x0) / res) * std::ceil((y1 - y0) / res) > double(max_cells_)) res *= 2;
-    x0 = std::floor(x0 / res) * res;
-    y0 = std::floor(y0 / res) * res;
-    rebuild(x0, y0, static_cast<std::size_t>(std::ceil((x1 - x0) / res)),
-            static_cast<std::size_t>(std::ceil((y1 - y0) / res)), res);
+    resizeTo(x0, y0, x1, y1);
 }
 
 void TopView::grow(float x, float y)
@@ -117,14 +123,7 @@ void TopView::grow(float x, float y)
     if (x >= nx1) nx1 = std::max<double>(x + res_, nx1 + w / 2);
     if (y < ny0) ny0 = std::min<double>(y, ny0 - h / 2);
     if (y >= ny1) ny1 = std::max<double>(y + res_, ny1 + h / 2);
-    double res = res_;
-    auto cells = [&] { return std::ceil((nx1 - nx0) / res) * std::ceil((ny1 - ny0) / res); };
-    while (cells() > double(max_cells_)) res *= 2;
-    // Cell edges stay on multiples of the resolution.
-    nx0 = std::floor(nx0 / res) * res;
-    ny0 = std::floor(ny0 / res) * res;
-    rebuild(nx0, ny0, static_cast<std::size_t>(std::ceil((nx1 - nx0) / res)),
-            static_cast<std::size_t>(std::ceil((ny1 - ny0) / res)), res);
+    resizeTo(nx0, ny0, nx1, ny1);
 }
 
 std::pair<int, int> TopView::write(const std::string& file, const std::string& title,

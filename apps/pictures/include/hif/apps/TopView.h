@@ -68,6 +68,9 @@ public:
 
 private:
     void grow(float x, float y);
+    /** The cells cover [x0, x1) x [y0, y1), coarser (twice, as often as needed) if that would
+     *  take more than max_cells_, edges on multiples of the cell size. */
+    void resizeTo(double x0, double y0, double x1, double y1);
     void rebuild(double x0, double y0, std::size_t cols, std::size_t rows, double res);
 
     double res_, inv_res_;
