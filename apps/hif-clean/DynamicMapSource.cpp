@@ -37,14 +37,7 @@ public:
         io::PcdCloud pcd = io::readPcd(file);
         // The benchmark's clouds are in the world frame; the map takes sensor-frame points and
         // the sensor pose (VIEWPOINT), so bring them back to the sensor frame.
-        const Eigen::Isometry3d inv = pcd.viewpoint.inverse();
-        for (std::size_t i = 0; i < pcd.size(); ++i)
-        {
-            const Eigen::Vector3d p = inv * Eigen::Vector3d(pcd.x[i], pcd.y[i], pcd.z[i]);
-            pcd.x[i] = static_cast<float>(p.x());
-            pcd.y[i] = static_cast<float>(p.y());
-            pcd.z[i] = static_cast<float>(p.z());
-        }
+        io::transform(pcd, pcd.viewpoint.inverse());
         out.obs = pointCloudObservation(pcd);
         out.robot_pose = mrpt::poses::CPose3D::FromHomogeneousMatrix(pcd.viewpoint.matrix());
         // NNNNNN.pcd is scan NNNNNN of its sequence.

@@ -160,14 +160,7 @@ hif::io::Cloud worldPoints(const std::string& dir, const std::string& stem,
                                          "a KITTI sequence (for its poses)");
     const std::size_t i = std::stoul(stem);
     hif::io::Cloud c = seq->readScan(i);
-    const Eigen::Isometry3d& T = seq->pose(i);
-    for (std::size_t k = 0; k < c.size(); ++k)
-    {
-        const Eigen::Vector3d w = T * Eigen::Vector3d(c.x[k], c.y[k], c.z[k]);
-        c.x[k] = float(w.x());
-        c.y[k] = float(w.y());
-        c.z[k] = float(w.z());
-    }
+    hif::io::transform(c, seq->pose(i));
     return c;
 }
 

@@ -82,16 +82,12 @@ void writeDynamicMap(const hif::io::KittiSequence& seq, std::size_t first, std::
     hif::apps::Progress progress(tag, "converting", last - first + 1);
     for (std::size_t i = first; i <= last; ++i)
     {
-        const hif::io::Cloud scan = seq.readScan(i);
-        const Eigen::Isometry3d& pose = seq.pose(i);
+        hif::io::Cloud scan = seq.readScan(i);
+        hif::io::transform(scan, seq.pose(i));
         hif::io::CloudWriter pcd({pcd_dir + "/" + hif::io::frameName(i) + ".pcd"});
-        pcd.setViewpoint(pose);
+        pcd.setViewpoint(seq.pose(i));
         for (std::size_t k = 0; k < scan.size(); ++k)
-        {
-            const Eigen::Vector3d w = pose * Eigen::Vector3d(scan.x[k], scan.y[k], scan.z[k]);
-            pcd.add(static_cast<float>(w.x()), static_cast<float>(w.y()), static_cast<float>(w.z()),
-                    scan.intensity[k]);
-        }
+            pcd.add(scan.x[k], scan.y[k], scan.z[k], scan.intensity[k]);
         pcd.close();
         progress.update(i - first + 1);
     }
