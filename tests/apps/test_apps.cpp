@@ -27,6 +27,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -750,50 +751,53 @@ TEST(HifClean, ReadsSensoryFramesAnd2DAnd3DAndVelodyneScansAndWritesThemBack)
             arch << sf;
         }
     }
+    // Observations format: per scan its pose, then the scan `make(s)` builds.
+    const auto writeRawlog =
+        [&d](const std::string& name, const std::function<CObservation::Ptr(int)>& make)
     {
-        mrpt::io::CFileOutputStream f(d + "/scans2d.rawlog");
+        mrpt::io::CFileOutputStream f(d + "/" + name);
         auto arch = mrpt::serialization::archiveFrom(f);
         for (int s = 0; s < 5; ++s)
         {
             auto pose = CObservationRobotPose::Create();
             pose->pose.mean = mrpt::poses::CPose3D(0.3 * s, 0, 0, 0, 0, 0);
-            arch << *pose;
-            auto scan = CObservation2DRangeScan::Create();
-            scan->aperture = float(M_PI);
-            scan->resizeScan(181);
-            for (std::size_t i = 0; i < 181; ++i)
-            {
-                // The wall at x = 6 - 0.3 s, and, in the first scan, a box at 3 m across 20 rays.
-                const double ang = -M_PI / 2 + M_PI * double(i) / 180.0;
-                const double wall = (6.0 - 0.3 * s) / std::max(0.2, std::cos(ang));
-                const bool box = s == 0 && i >= 80 && i < 100;
-                scan->setScanRange(i, float(box ? 3.0 / std::cos(ang) : std::min(wall, 30.0)));
-                scan->setScanRangeValidity(i, std::cos(ang) > 0.2 || box);
-            }
-            arch << *scan;
+            arch << *pose << *make(s);
         }
-    }
-    {
-        mrpt::io::CFileOutputStream f(d + "/velodyne.rawlog");
-        auto arch = mrpt::serialization::archiveFrom(f);
-        for (int s = 0; s < 5; ++s)
-        {
-            auto pose = CObservationRobotPose::Create();
-            pose->pose.mean = mrpt::poses::CPose3D(0.3 * s, 0, 0, 0, 0, 0);
-            arch << *pose;
-            // As the Velodyne driver leaves it after generatePointCloud(): the points (and here
-            // no raw packets).
-            auto velo = CObservationVelodyneScan::Create();
-            for (const auto& p : pointsOf(s))
-            {
-                velo->point_cloud.x.push_back(float(p.x));
-                velo->point_cloud.y.push_back(float(p.y));
-                velo->point_cloud.z.push_back(float(p.z));
-                velo->point_cloud.intensity.push_back(100);
-            }
-            arch << *velo;
-        }
-    }
+    };
+    writeRawlog("scans2d.rawlog",
+                [](int s)
+                {
+                    auto scan = CObservation2DRangeScan::Create();
+                    scan->aperture = float(M_PI);
+                    scan->resizeScan(181);
+                    for (std::size_t i = 0; i < 181; ++i)
+                    {
+                        // The wall at x = 6 - 0.3 s, and, in the first scan, a box at 3 m
+                        // across 20 rays.
+                        const double ang = -M_PI / 2 + M_PI * double(i) / 180.0;
+                        const double wall = (6.0 - 0.3 * s) / std::max(0.2, std::cos(ang));
+                        const bool box = s == 0 && i >= 80 && i < 100;
+                        scan->setScanRange(i,
+                                           float(box ? 3.0 / std::cos(ang) : std::min(wall, 30.0)));
+                        scan->setScanRangeValidity(i, std::cos(ang) > 0.2 || box);
+                    }
+                    return scan;
+                });
+    // As the Velodyne driver leaves it after generatePointCloud(): the points (and here no raw
+    // packets).
+    writeRawlog("velodyne.rawlog",
+                [&pointsOf](int s)
+                {
+                    auto velo = CObservationVelodyneScan::Create();
+                    for (const auto& p : pointsOf(s))
+                    {
+                        velo->point_cloud.x.push_back(float(p.x));
+                        velo->point_cloud.y.push_back(float(p.y));
+                        velo->point_cloud.z.push_back(float(p.z));
+                        velo->point_cloud.intensity.push_back(100);
+                    }
+                    return velo;
+                });
     for (const std::string kind : {"frames3d", "scans2d", "velodyne"})
     {
         SCOPED_TRACE(kind);
