@@ -622,14 +622,15 @@ TEST(Walkers, SyntheticWalkersAreRemovedOfflineAndOnline)
         const json offline = score("offline", "");
         const json online = score("online", "--online");
         const double paper_da = paper["per_moving_class"]["moving-person"]["DA"].get<double>();
-        // Measured: person DA 96 and 86 offline, 75 and 70 online (the paper: under 40).
+        // Measured: person DA 96 and 92 offline, 86 and 77 online (the paper: under 40; testing
+        // the first point of a run alone gave 96 and 86 offline, 75 and 70 online).
         for (const json* s : {&offline, &online})
         {
             EXPECT_GE((*s)["total"]["SA"].get<double>(), 99.5);
             EXPECT_GT((*s)["per_moving_class"]["moving-person"]["dynamic_total"].get<int>(), 1000);
         }
-        EXPECT_GE(offline["per_moving_class"]["moving-person"]["DA"].get<double>(), 80.0);
-        EXPECT_GE(online["per_moving_class"]["moving-person"]["DA"].get<double>(), 60.0);
+        EXPECT_GE(offline["per_moving_class"]["moving-person"]["DA"].get<double>(), 85.0);
+        EXPECT_GE(online["per_moving_class"]["moving-person"]["DA"].get<double>(), 72.0);
         EXPECT_LT(paper_da, 50.0);
     }
 }

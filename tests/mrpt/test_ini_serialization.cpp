@@ -371,13 +371,13 @@ TEST(CHeightIntervalMapIni, ShippedKittiConfigsLoadTheDocumentedDefaults)
         // test with a lower share; the DynamicMap layout, a minimum range too.
         hif::Params expected;
         expected.free_space_window = 10;
-        expected.free_space_fraction = 0.3;
+        expected.free_space_fraction = 0.4;
         if (name != "kitti-online.ini")
         {
             expected.p_empty_init = 0.42;
             expected.see_through_range = 35.0;
             expected.see_through_margin = 2.5;
-            expected.free_space_fraction = 0.6;
+            expected.free_space_fraction = 0.7;
         }
         if (name == "dynamicmap.ini") expected.min_range = 3.0;
         EXPECT_EQ(hif::test::differingFields<hif::Params>(map->params(), expected), "") << name;

@@ -83,6 +83,95 @@ View look(const Judge& j, const Eigen::Vector3d& p, double margin0, double margi
     if (e <= d + m) return e > d - m ? View::Occupied : View::None;
     return near ? View::Vetoed : View::Free;  // passed, unless something is near it
 }
+/** What the window's scans say about one point, all opinions taken together. */
+enum class Verdict : uint8_t
+{
+    Unjudged,  ///< no scan gave an opinion
+    Held,      ///< some did, none showed it gone
+    Gone       ///< a scan outside the stretch of time it was seen occupied saw through it
+};
+
+/** The limits of a direction that judge `j` may give an opinion from about world point `p`,
+ *  seen at `from_self` (p minus the sensor that saw it, `self_dist` long): within
+ *  Params::free_space_max_parallax_deg of that view. */
+struct Parallax
+{
+    double sin_limit;
+    double cos_limit;
+
+    [[nodiscard]] bool inView(const Judge& j, const Eigen::Vector3d& p,
+                              const Eigen::Vector3d& from_self, double self_dist) const
+    {
+        // Seen from a point at distance a, two sensors a baseline b apart subtend at most
+        // asin(b / a): within the limit without computing the angle when b <= a sin(limit).
+        if (j.baseline <= self_dist * sin_limit) return true;
+        const Eigen::Vector3d from_j = p - j.t;
+        return from_self.dot(from_j) >= cos_limit * self_dist * from_j.norm();
+    }
+};
+
+/** What a pillar's points must be to be tested, in the scan's height cells and metres. */
+struct ObjectTest
+{
+    int32_t clearance;  ///< cells above the pillar's lowest return
+    double range2;      ///< squared range from the sensor
+    double min_extent;  ///< metres spanned
+    double res;         ///< metres per cell
+
+    /** The entries of pillar `p` of `scan` to test (into `tested`): clear of the pillar's
+     *  lowest return, within range, not dynamic already; none unless at least 3 spanning
+     *  min_extent. Returns the pillar's lowest cell. */
+    int32_t entries(const ScanBuckets& scan, std::size_t p, const PointsView& pts,
+                    const std::vector<uint8_t>& is_dynamic, std::vector<uint32_t>& tested) const
+    {
+        const uint32_t b = scan.offsets[p], e = scan.offsets[p + 1];
+        int32_t low = std::numeric_limits<int32_t>::max();
+        for (uint32_t k = b; k < e; ++k) low = std::min(low, scan.cells[k]);
+        tested.clear();
+        int32_t top = std::numeric_limits<int32_t>::min();
+        int32_t bottom = std::numeric_limits<int32_t>::max();
+        for (uint32_t k = b; k < e; ++k)
+        {
+            const uint32_t i = scan.index[k];
+            if (is_dynamic[i] || scan.cells[k] < low + clearance) continue;
+            const double x = pts.x[i], y = pts.y[i], z = pts.z[i];
+            if (x * x + y * y + z * z > range2) continue;
+            tested.push_back(k);
+            top = std::max(top, scan.cells[k]);
+            bottom = std::min(bottom, scan.cells[k]);
+        }
+        if (tested.size() < 3 || (top - bottom + 1) * res < min_extent) tested.clear();
+        return low;
+    }
+};
+
+/** Gone points needed among `judged` for a share `fraction`: at least one. */
+std::size_t needed(double fraction, std::size_t judged)
+{
+    return std::max<std::size_t>(
+        1, static_cast<std::size_t>(std::ceil(fraction * static_cast<double>(judged) - 1e-9)));
+}
+
+/** Whether the verdicts of `tested` (in order, from `verdict(k)`) reach `fraction` of the
+ *  judged ones. Stops as soon as the outcome is known: the rest all gone would not reach it,
+ *  or the rest all held would not undo it. */
+template <typename VerdictOf>
+bool reachesShare(const std::vector<uint32_t>& tested, double fraction, VerdictOf&& verdict)
+{
+    std::size_t gone = 0, judged = 0, left = tested.size();
+    for (uint32_t k : tested)
+    {
+        const std::size_t need = needed(fraction, judged + left);
+        if (gone >= need) return true;
+        if (gone + left < need) return false;
+        const Verdict v = verdict(k);
+        gone += v == Verdict::Gone;
+        judged += v != Verdict::Unjudged;
+        --left;
+    }
+    return gone >= needed(fraction, judged);
+}
+
 }  // namespace
 
 std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, const PointsView& pts,
@@ -105,15 +194,14 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     const Eigen::Matrix3d R = T.linear();
     const Eigen::Vector3d t = T.translation();
     for (Judge& j : judges) j.baseline = (j.t - t).norm();
-    const double range2 = prm.free_space_range * prm.free_space_range;
-    const auto clearance = static_cast<int32_t>(std::ceil(prm.free_space_clearance / res - 1e-9));
-    const int32_t below = clearance / 2;  // marked from half the clearance up
-    const double cos_parallax = std::cos(prm.free_space_max_parallax_deg * M_PI / 180.0);
-    // Seen from a point at distance a, two sensors a baseline b apart subtend at most
-    // asin(b / a): within the limit without computing the angle when b <= a sin(limit).
-    const double sin_parallax = prm.free_space_max_parallax_deg >= 90.0
-                                    ? 1.0
-                                    : std::sin(prm.free_space_max_parallax_deg * M_PI / 180.0);
+    const ObjectTest object{static_cast<int32_t>(std::ceil(prm.free_space_clearance / res - 1e-9)),
+                            prm.free_space_range * prm.free_space_range, prm.free_space_min_extent,
+                            res};
+    const int32_t below = object.clearance / 2;  // marked from half the clearance up
+    const Parallax parallax{prm.free_space_max_parallax_deg >= 90.0
+                                ? 1.0
+                                : std::sin(prm.free_space_max_parallax_deg * M_PI / 180.0),
+                            std::cos(prm.free_space_max_parallax_deg * M_PI / 180.0)};
     // Where the classified scan sits among the judges by id (a scan without one is newer
     // than the whole window, as online).
     const std::size_t self_pos =
@@ -122,82 +210,69 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
                                                          { return j.id < id; }) -
                                         judges.begin())
              : judges.size();
-    auto rangeSq = [&](uint32_t i)
-    {
-        const double x = pts.x[i], y = pts.y[i], z = pts.z[i];
-        return x * x + y * y + z * z;
-    };
 
-    // Whether other scans showed the point of entry k gone: the judges that saw it occupied,
-    // with this scan, span a stretch of time; only a judge outside it that saw through the point
+    // What the judges say about input point i: the judges that saw it occupied, with
+    // this scan, span a stretch of time; only a judge outside it that saw through the point
     // shows it gone. On each side of the scan, walking in from the farthest judge, the first
     // one with an opinion decides that side: seen through, gone; occupied, the stretch reaches
     // it, so no nearer judge of that side can show the point gone.
-    auto shownGone = [&](uint32_t k)
+    auto pointVerdict = [&](uint32_t i)
     {
-        const uint32_t i = scan.index[k];
         const Eigen::Vector3d p_w = R * Eigen::Vector3d(pts.x[i], pts.y[i], pts.z[i]) + t;
         const Eigen::Vector3d from_self = p_w - t;
         const double self_dist = from_self.norm();
-        auto opinion = [&](const Judge& j)
+        bool judged = false;
+        // Whether judge j settles this side: gone, or occupied.
+        auto settles = [&](const Judge& j, bool& gone)
         {
-            const Eigen::Vector3d from_j = p_w - j.t;
-            const bool in_view = j.baseline <= self_dist * sin_parallax ||
-                                 from_self.dot(from_j) >= cos_parallax * self_dist * from_j.norm();
-            return in_view ? look(j, p_w, prm.free_space_margin, prm.free_space_margin_per_m)
-                           : View::None;
+            if (!parallax.inView(j, p_w, from_self, self_dist)) return false;
+            const View v = look(j, p_w, prm.free_space_margin, prm.free_space_margin_per_m);
+            judged = judged || v != View::None;
+            gone = v == View::Free;
+            return gone || v == View::Occupied;
         };
+        bool gone = false;
         for (std::size_t j = 0; j < self_pos; ++j)  // the earlier judges, oldest first
-        {
-            const View v = opinion(judges[j]);
-            if (v == View::Free) return true;
-            if (v == View::Occupied) break;
-        }
+            if (settles(judges[j], gone)) break;
+        if (gone) return Verdict::Gone;
         for (std::size_t j = judges.size(); j-- > self_pos;)  // the later ones, newest first
-        {
-            const View v = opinion(judges[j]);
-            if (v == View::Free) return true;
-            if (v == View::Occupied) break;
-        }
-        return false;
+            if (settles(judges[j], gone)) break;
+        if (gone) return Verdict::Gone;
+        return judged ? Verdict::Held : Verdict::Unjudged;
+    };
+
+    // What they say about entry k: it stands for a run of input points in one height cell of
+    // the pillar (its repeats follow it), on KITTI the points of one ring across an object.
+    // The run's two ends are the object's edges along the sweep, where a mover shows up first
+    // and leaves last: the first of them shown gone shows the entry gone. (The first point
+    // alone would test only the edge the sweep meets first: a walker moving with the sweep
+    // would show only its trailing edge.)
+    auto verdict = [&](uint32_t k)
+    {
+        const uint32_t first = scan.index[k];
+        uint32_t last = first;
+        while (last + 1 < pts.size && scan.repeats[last + 1]) ++last;
+        const Verdict a = pointVerdict(first);
+        if (a == Verdict::Gone || last == first) return a;
+        const Verdict b = pointVerdict(last);
+        if (b != Verdict::Unjudged) return b;
+        return a;
     };
 
     std::size_t marked = 0;
     std::vector<uint32_t> tested;
     for (std::size_t p = 0; p < scan.pillarCount(); ++p)
     {
-        const uint32_t b = scan.offsets[p], e = scan.offsets[p + 1];
-        int32_t low = std::numeric_limits<int32_t>::max();
-        for (uint32_t k = b; k < e; ++k) low = std::min(low, scan.cells[k]);
-        // The pillar's kept points clear of its lowest return, within range.
-        tested.clear();
-        int32_t top = std::numeric_limits<int32_t>::min();
-        int32_t bottom = std::numeric_limits<int32_t>::max();
-        for (uint32_t k = b; k < e; ++k)
+        const int32_t low = object.entries(scan, p, pts, is_dynamic, tested);
+        if (tested.empty()) continue;
+        if (!reachesShare(tested, prm.free_space_fraction, verdict)) continue;
+        for (uint32_t k = scan.offsets[p]; k < scan.offsets[p + 1]; ++k)
         {
             const uint32_t i = scan.index[k];
-            if (is_dynamic[i] || scan.cells[k] < low + clearance || rangeSq(i) > range2) continue;
-            tested.push_back(k);
-            top = std::max(top, scan.cells[k]);
-            bottom = std::min(bottom, scan.cells[k]);
-        }
-        if (tested.size() < 3 || (top - bottom + 1) * res < prm.free_space_min_extent) continue;
-
-        // Stops as soon as the outcome is known.
-        const auto need = static_cast<std::size_t>(
-            std::ceil(prm.free_space_fraction * static_cast<double>(tested.size()) - 1e-9));
-        std::size_t gone = 0, left = tested.size();
-        for (uint32_t k : tested)
-        {
-            if (gone >= need || gone + left < need) break;
-            gone += shownGone(k);
-            --left;
-        }
-        if (gone < need) continue;
-        for (uint32_t k = b; k < e; ++k)
-        {
-            const uint32_t i = scan.index[k];
-            if (is_dynamic[i] || scan.cells[k] < low + below || rangeSq(i) > range2) continue;
+            const double x = pts.x[i], y = pts.y[i], z = pts.z[i];
+            if (is_dynamic[i] || scan.cells[k] < low + below ||
+                x * x + y * y + z * z > object.range2)
+                continue;
             is_dynamic[i] = 1;
             ++marked;
         }

@@ -103,7 +103,8 @@ struct Params
     /** A pillar's tested points must span at least this in height: an object, not ground
      *  texture, metres. */
     double free_space_min_extent = 0.5;
-    /** Share of a pillar's tested points that must be shown gone for it to be removed. */
+    /** Share of a pillar's judged points (tested points that another scan saw occupied, or
+     *  through) that must be shown gone for it to be removed. */
     double free_space_fraction = 0.5;
     /** Only scans that see a point within this angle of the direction it was seen from give
      *  evidence, degrees: from far off the original view, a beam grazes surfaces and passes
@@ -178,7 +179,7 @@ inline const std::array<Field<Params>, 24>& Params::fields()
         {"free_space_min_extent", &P::free_space_min_extent, Bounds::atLeast(0), 2,
          "Free-space test: a pillar's tested points span at least this height [m]"},
         {"free_space_fraction", &P::free_space_fraction, Bounds::open(0, 1), 2,
-         "Free-space test: share of a pillar's tested points shown gone to remove it"},
+         "Free-space test: share of a pillar's judged points shown gone to remove it"},
         {"free_space_max_parallax_deg", &P::free_space_max_parallax_deg, Bounds::closed(0, 180), 2,
          "Free-space test: evidence only from views within this angle [deg]"},
         {"min_range", &P::min_range, Bounds::closedOpen(0, 100), 2,
