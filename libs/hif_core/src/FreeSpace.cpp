@@ -83,6 +83,7 @@ View look(const Judge& j, const Eigen::Vector3d& p, double margin0, double margi
     if (e <= d + m) return e > d - m ? View::Occupied : View::None;
     return near ? View::Vetoed : View::Free;  // passed, unless something is near it
 }
+
 /** What the window's scans say about one point, all opinions taken together. */
 enum class Verdict : uint8_t
 {
@@ -91,9 +92,9 @@ enum class Verdict : uint8_t
     Gone       ///< a scan outside the stretch of time it was seen occupied saw through it
 };
 
-/** The limits of a direction that judge `j` may give an opinion from about world point `p`,
- *  seen at `from_self` (p minus the sensor that saw it, `self_dist` long): within
- *  Params::free_space_max_parallax_deg of that view. */
+/** The view limit (Params::free_space_max_parallax_deg): judge `j` gives an opinion about
+ *  world point `p` only if it sees `p` within that angle of the direction the classified scan
+ *  saw it from (`from_self`: p minus that scan's sensor, `self_dist` long). */
 struct Parallax
 {
     double sin_limit;
