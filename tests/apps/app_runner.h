@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file   app_runner.h
- * @brief  Test helper: run an app as a user does (stdout and stderr to one log), read JSON,
- *         make a fresh work folder.
+ * @brief  Test helper: run an app as a user does (stdout and stderr to one log), check that it
+ *         failed with a message, read JSON, make a fresh work folder.
  */
 #pragma once
 
@@ -38,6 +38,16 @@ inline Result runApp(const std::string& app, const std::string& args)
     std::stringstream ss;
     ss << f.rdbuf();
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
+}
+
+/** The run failed with a message naming the problem (`message` in its output), without a
+ *  backtrace. */
+inline void expectError(const Result& r, const std::string& message)
+{
+    EXPECT_NE(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find(message), std::string::npos) << "expected '" << message << "' in:\n"
+                                                         << r.output;
+    EXPECT_EQ(r.output.find("Call stack"), std::string::npos) << "a backtrace:\n" << r.output;
 }
 
 inline nlohmann::json readJson(const std::string& file)

@@ -44,6 +44,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 using hif::test::bytesOf;
+using hif::test::expectError;
 using hif::test::fresh;
 using hif::test::readJson;
 using hif::test::runApp;
@@ -373,24 +374,19 @@ TEST_F(SyntheticPipeline, ThreadsAndHeldScansGiveIdenticalResults)
     r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + root_ +
                                 "/x -q --online "
                                 "--hold-scans");
-    EXPECT_NE(r.code, 0);
-    EXPECT_NE(r.output.find("--hold-scans applies to offline mode only"), std::string::npos)
-        << r.output;
+    expectError(r, "--hold-scans applies to offline mode only");
     r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + root_ + "/x -q --threads 0");
-    EXPECT_NE(r.code, 0);
-    EXPECT_NE(r.output.find("--threads 0 is not in [1, 1024]"), std::string::npos) << r.output;
+    expectError(r, "--threads 0 is not in [1, 1024]");
 }
 
 TEST_F(SyntheticPipeline, RefusesToOverwriteAndNamesBadInput)
 {
     // The rawlog exists: kitti2rawlog does not replace it unless told to.
     auto r = runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + root_ + "/scans.rawlog");
-    EXPECT_NE(r.code, 0);
-    EXPECT_NE(r.output.find("already exists; pass --overwrite"), std::string::npos) << r.output;
+    expectError(r, "already exists; pass --overwrite");
     // A missing input is named.
     r = runApp("hif-clean", "-i " + root_ + "/nothing.rawlog -o " + root_ + "/x");
-    EXPECT_NE(r.code, 0);
-    EXPECT_NE(r.output.find("nothing.rawlog' does not exist"), std::string::npos) << r.output;
+    expectError(r, "nothing.rawlog' does not exist");
     // A truncated rawlog is an error naming the file, not a silent partial map.
     {
         std::ifstream in(root_ + "/scans.rawlog", std::ios::binary);
@@ -399,9 +395,7 @@ TEST_F(SyntheticPipeline, RefusesToOverwriteAndNamesBadInput)
         out.write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2 + 7));
     }
     r = runApp("hif-clean", "-i " + root_ + "/truncated.rawlog -o " + root_ + "/trunc -q");
-    EXPECT_NE(r.code, 0);
-    EXPECT_NE(r.output.find("truncated.rawlog' is corrupt or truncated"), std::string::npos)
-        << r.output;
+    expectError(r, "truncated.rawlog' is corrupt or truncated");
     // What MRPT found, without its exception frames.
     EXPECT_EQ(r.output.find("==== MRPT exception"), std::string::npos) << r.output;
     // A short pose file is named with the counts.
@@ -416,8 +410,7 @@ TEST_F(SyntheticPipeline, RefusesToOverwriteAndNamesBadInput)
         out << first << "\n";
     }
     r = runApp("kitti2rawlog", "-i " + bad + " -o " + bad + "/x.rawlog");
-    EXPECT_NE(r.code, 0);
-    EXPECT_NE(r.output.find("poses.txt' has 1 poses for 20 scans"), std::string::npos) << r.output;
+    expectError(r, "poses.txt' has 1 poses for 20 scans");
     EXPECT_FALSE(fs::exists(bad + "/x.rawlog"));
     // A bad config value is named with its section.
     {
@@ -430,8 +423,7 @@ TEST_F(SyntheticPipeline, RefusesToOverwriteAndNamesBadInput)
     }
     r = runApp("hif-clean",
                "-i " + root_ + "/scans.rawlog -o " + bad + "/out -c " + bad + "/bad.ini");
-    EXPECT_NE(r.code, 0);
-    EXPECT_NE(r.output.find("invalid alpha = 0.4"), std::string::npos) << r.output;
+    expectError(r, "invalid alpha = 0.4");
 }
 
 TEST_F(SyntheticPipeline, DynamicMapFolderLayoutIsReadAndItsOutputWritten)
@@ -537,12 +529,9 @@ TEST_F(SyntheticPipeline, KittiAndDynamicMapFoldersGiveTheRawlogsResult)
     // A folder that is neither layout is named as such; a bad --format is refused.
     fs::create_directories(root_ + "/neither");
     r = runApp("hif-clean", "-i " + root_ + "/neither -o " + root_ + "/neither/out");
-    EXPECT_NE(r.code, 0);
-    EXPECT_NE(r.output.find("neither velodyne/ (a KITTI sequence) nor pcd/"), std::string::npos)
-        << r.output;
+    expectError(r, "neither velodyne/ (a KITTI sequence) nor pcd/");
     r = runApp("hif-clean", "-i " + root_ + "/seq -o " + root_ + "/bad_format --format las");
-    EXPECT_NE(r.code, 0);
-    EXPECT_NE(r.output.find("--format"), std::string::npos) << r.output;
+    expectError(r, "--format");
     EXPECT_FALSE(fs::exists(root_ + "/bad_format"));
 }
 
@@ -686,8 +675,7 @@ TEST_F(SyntheticPipeline, RawlogOutHoldsTheKeptPointsForMrptTools)
     // Refused without --overwrite, like every output.
     r = runApp("hif-clean",
                "-i " + root_ + "/seq -o " + d + "/out2 -q --rawlog-out " + d + "/clean.rawlog");
-    EXPECT_NE(r.code, 0);
-    EXPECT_NE(r.output.find("clean.rawlog' already exists"), std::string::npos) << r.output;
+    expectError(r, "clean.rawlog' already exists");
     // Read back: the same scans (numbered as before), and only the points that were kept.
     r = runApp("hif-clean", "-i " + d + "/clean.rawlog -o " + d + "/again -q --no-png");
     ASSERT_EQ(r.code, 0) << r.output;

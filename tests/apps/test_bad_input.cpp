@@ -18,6 +18,7 @@
 
 namespace fs = std::filesystem;
 using hif::test::bytesOf;
+using hif::test::expectError;
 using hif::test::fresh;
 using hif::test::readJson;
 using hif::test::Result;
@@ -25,14 +26,6 @@ using hif::test::runApp;
 
 namespace
 {
-void expectError(const Result& r, const std::string& message)
-{
-    EXPECT_NE(r.code, 0) << r.output;
-    EXPECT_NE(r.output.find(message), std::string::npos) << "expected '" << message << "' in:\n"
-                                                         << r.output;
-    EXPECT_EQ(r.output.find("Call stack"), std::string::npos) << "a backtrace:\n" << r.output;
-}
-
 /** A short synthetic sequence, converted, in a fresh folder. */
 class BadInput : public ::testing::Test
 {
