@@ -2,7 +2,7 @@
 /**
  * @file   app_runner.h
  * @brief  Test helper: run an app as a user does (stdout and stderr to one log), check that it
- *         failed with a message, read JSON, make a fresh work folder.
+ *         failed with a message, read JSON, make a work folder.
  */
 #pragma once
 
@@ -16,6 +16,8 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+
+#include "work_dir.h"
 
 namespace hif::test
 {
@@ -34,9 +36,12 @@ inline Result runApp(const std::string& app, const std::string& args)
     const std::string log = kWork + "/last_command_" + std::to_string(getpid()) + ".log";
     const std::string cmd = kBin + "/" + app + " " + args + " > " + log + " 2>&1";
     const int status = std::system(cmd.c_str());
-    std::ifstream f(log);
     std::stringstream ss;
-    ss << f.rdbuf();
+    {
+        std::ifstream f(log);
+        ss << f.rdbuf();
+    }
+    std::filesystem::remove(log);
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
 }
 
@@ -57,13 +62,8 @@ inline nlohmann::json readJson(const std::string& file)
     return nlohmann::json::parse(f);
 }
 
-inline std::string fresh(const std::string& name)
-{
-    const std::string d = kWork + "/" + name;
-    std::filesystem::remove_all(d);
-    std::filesystem::create_directories(d);
-    return d;
-}
+/** A fresh folder `name` in the tests' work folder, removed if the test passes. */
+inline WorkDir workDir(const std::string& name) { return WorkDir(kWork + "/" + name); }
 
 inline std::string bytesOf(const std::string& file)
 {

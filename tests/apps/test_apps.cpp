@@ -29,6 +29,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -45,9 +46,10 @@ using nlohmann::json;
 
 using hif::test::bytesOf;
 using hif::test::expectError;
-using hif::test::fresh;
 using hif::test::readJson;
 using hif::test::runApp;
+using hif::test::WorkDir;
+using hif::test::workDir;
 
 namespace
 {
@@ -103,7 +105,8 @@ TEST(Apps, HelpExitsZeroAndABadFlagStopsTheApp)
 
 TEST(HifEval, AgreesWithAHandCountedExample)
 {
-    const std::string d = fresh("eval_hand");
+    const WorkDir work = workDir("eval_hand");
+    const std::string& d = work.path();
     fs::create_directories(d + "/labels");
     fs::create_directories(d + "/pred");
     // Scan 0: truth  road(40) road car(10) moving-car(252) unlabeled(0) moving-person(254|id 3)
@@ -194,7 +197,9 @@ protected:
     // CTest runs each test in its own process, two at a time: one folder per process.
     static void SetUpTestSuite()
     {
-        root_ = fresh("synthetic_" + std::to_string(getpid()));
+        work_ =
+            std::make_unique<WorkDir>(hif::test::kWork + "/synthetic_" + std::to_string(getpid()));
+        root_ = work_->path();
         const auto g = runApp("hif-synthetic-kitti", "-o " + root_ + "/seq --scans 20");
         const auto c = g.code == 0 ? runApp("kitti2rawlog",
                                             "-i " + root_ + "/seq -o " + root_ + "/scans.rawlog")
@@ -204,9 +209,13 @@ protected:
     }
     // A failed set-up fails every test (gtest would report them as skipped).
     void SetUp() override { ASSERT_TRUE(setup_ok_) << setup_log_; }
+    // The folder goes unless a test failed.
+    static void TearDownTestSuite() { work_.reset(); }
+    static std::unique_ptr<WorkDir> work_;
     static std::string root_, setup_log_;
     static bool setup_ok_;
 };
+std::unique_ptr<WorkDir> SyntheticPipeline::work_;
 std::string SyntheticPipeline::root_, SyntheticPipeline::setup_log_;
 bool SyntheticPipeline::setup_ok_ = false;
 
@@ -398,7 +407,8 @@ TEST_F(SyntheticPipeline, RefusesToOverwriteAndNamesBadInput)
     // What MRPT found, without its exception frames.
     EXPECT_EQ(r.output.find("==== MRPT exception"), std::string::npos) << r.output;
     // A short pose file is named with the counts.
-    const std::string bad = fresh("short_poses");
+    const WorkDir work = workDir("short_poses");
+    const std::string& bad = work.path();
     fs::copy(root_ + "/seq", bad, fs::copy_options::recursive);
     {
         std::ifstream in(bad + "/poses.txt");
@@ -429,7 +439,8 @@ TEST_F(SyntheticPipeline, DynamicMapFolderLayoutIsReadAndItsOutputWritten)
 {
     // Build the benchmark's layout from the synthetic sequence: pcd/NNNNNN.pcd with world
     // points and the sensor pose in VIEWPOINT.
-    const std::string dm = fresh("dynamicmap");
+    const WorkDir work = workDir("dynamicmap");
+    const std::string& dm = work.path();
     fs::create_directories(dm + "/pcd");
     const hif::io::KittiSequence seq(root_ + "/seq");
     for (std::size_t i = 0; i < seq.size(); ++i)
@@ -538,7 +549,8 @@ TEST_F(SyntheticPipeline, KittiAndDynamicMapFoldersGiveTheRawlogsResult)
 // clouds hif-clean writes.
 TEST(HifClean, PlacesPointsAtTheRobotPoseComposedWithTheSensorPose)
 {
-    const std::string d = fresh("sensor_pose");
+    const WorkDir work = workDir("sensor_pose");
+    const std::string& d = work.path();
     const mrpt::poses::CPose3D sensor(0.8, -0.3, 1.7, mrpt::DEG2RAD(30.0), mrpt::DEG2RAD(3.0),
                                       mrpt::DEG2RAD(-2.0));
     std::size_t points = 0;
@@ -584,7 +596,8 @@ TEST(HifClean, PlacesPointsAtTheRobotPoseComposedWithTheSensorPose)
 // the static scene.
 TEST(Walkers, SyntheticWalkersAreRemovedOfflineAndOnline)
 {
-    const std::string d = fresh("walkers_" + std::to_string(getpid()));
+    const WorkDir work = workDir("walkers_" + std::to_string(getpid()));
+    const std::string& d = work.path();
     for (const auto& [speed, seed] : {std::pair{"0", "3"}, std::pair{"3", "2"}})
     {
         const std::string seq = d + "/v" + std::string(speed);
@@ -631,7 +644,8 @@ TEST_P(RealKitti, OfflineCleaningMeetsTheFloors)
     const auto& [seq, sa_floor, aa_floor] = GetParam();
     const std::string dir = hif::test::kittiRoot() + "/sequences/" + seq;
     HIF_REQUIRE_KITTI_SEQUENCE(dir);
-    const std::string w = fresh("kitti" + seq);
+    const WorkDir work = workDir("kitti" + seq);
+    const std::string& w = work.path();
     auto r = runApp("kitti2rawlog", "-i " + dir + " -o " + w + "/scans.rawlog --external");
     ASSERT_EQ(r.code, 0) << r.output;
     r = runApp("hif-clean", "-i " + w + "/scans.rawlog -o " + w + "/out -q");
@@ -699,7 +713,8 @@ TEST_F(SyntheticPipeline, RawlogOutHoldsTheKeptPointsForMrptTools)
 TEST(HifClean, ReadsSensoryFramesAnd2DAnd3DAndVelodyneScansAndWritesThemBack)
 {
     using namespace mrpt::obs;
-    const std::string d = fresh("mrpt_kinds");
+    const WorkDir work = workDir("mrpt_kinds");
+    const std::string& d = work.path();
     // A wall 6 m ahead and the ground, seen from a robot that moves 0.3 m a scan; a box passes
     // in front of the wall in the first scan only.
     const auto pointsOf = [](int s)

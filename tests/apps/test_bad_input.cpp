@@ -10,6 +10,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 #include "app_runner.h"
@@ -19,10 +20,11 @@
 namespace fs = std::filesystem;
 using hif::test::bytesOf;
 using hif::test::expectError;
-using hif::test::fresh;
 using hif::test::readJson;
 using hif::test::Result;
 using hif::test::runApp;
+using hif::test::WorkDir;
+using hif::test::workDir;
 
 namespace
 {
@@ -32,7 +34,9 @@ class BadInput : public ::testing::Test
 protected:
     static void SetUpTestSuite()
     {
-        root_ = fresh("bad_input_" + std::to_string(getpid()));
+        work_ =
+            std::make_unique<WorkDir>(hif::test::kWork + "/bad_input_" + std::to_string(getpid()));
+        root_ = work_->path();
         const auto g = runApp("hif-synthetic-kitti", "-o " + root_ + "/seq -n 6");
         const auto c =
             g.code == 0 ? runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + root_ + "/all.rawlog")
@@ -41,6 +45,8 @@ protected:
         setup_log_ = g.output + c.output;
     }
     void SetUp() override { ASSERT_TRUE(setup_ok_) << setup_log_; }
+    // The folder goes unless a test failed.
+    static void TearDownTestSuite() { work_.reset(); }
 
     /** The shipped kitti.ini with `from` replaced by `to`, written to a file of the test. */
     static std::string ini(const std::string& from, const std::string& to)
@@ -57,9 +63,11 @@ protected:
         return file;
     }
 
+    static std::unique_ptr<WorkDir> work_;
     static std::string root_, setup_log_;
     static bool setup_ok_;
 };
+std::unique_ptr<WorkDir> BadInput::work_;
 std::string BadInput::root_, BadInput::setup_log_;
 bool BadInput::setup_ok_ = false;
 }  // namespace
@@ -116,7 +124,8 @@ TEST_F(BadInput, NegativeNumbersAreRejectedNotWrapped)
 
 TEST_F(BadInput, AnEmptyScanFileIsATruncatedOne)
 {
-    const std::string seq = fresh("bad_input_empty_" + std::to_string(getpid()));
+    const WorkDir work = workDir("bad_input_empty_" + std::to_string(getpid()));
+    const std::string& seq = work.path();
     fs::copy(root_ + "/seq", seq, fs::copy_options::recursive);
     std::ofstream(seq + "/velodyne/000003.bin", std::ios::trunc).close();
     expectError(runApp("kitti2rawlog", "-i " + seq + " -o " + seq + "/x.rawlog"),
@@ -202,7 +211,8 @@ TEST_F(BadInput, RedirectedOutputReadsInOrderAndFoldersAreNamedForWhatTheyAre)
 // refused before anything is allocated for it, naming the file and the number.
 TEST(BadPcd, AHeaderThatPromisesMoreThanTheFileHoldsIsRefused)
 {
-    const std::string dir = fresh("bad_pcd_" + std::to_string(getpid()));
+    const WorkDir work = workDir("bad_pcd_" + std::to_string(getpid()));
+    const std::string& dir = work.path();
     auto pcd = [&](const std::string& size, const std::string& count, const std::string& points)
     {
         const std::string file = dir + "/scan.pcd";

@@ -21,9 +21,10 @@
 #include "hif/io/KittiSequence.h"
 #include "kitti_fixture.h"
 
-using hif::test::fresh;
 using hif::test::readJson;
 using hif::test::runApp;
+using hif::test::WorkDir;
+using hif::test::workDir;
 
 namespace
 {
@@ -52,7 +53,8 @@ TEST(HifIcpSlam, TracksKitti08AndKeepsMoversOutOfItsMap)
 {
     const std::string seq = hif::test::kittiRoot() + "/sequences/08";
     HIF_REQUIRE_KITTI_SEQUENCE(seq);
-    const std::string d = fresh("icp_slam_08");
+    const WorkDir work = workDir("icp_slam_08");
+    const std::string& d = work.path();
     nlohmann::json with, without;
     for (const bool hif : {true, false})
     {
@@ -101,7 +103,8 @@ TEST(HifIcpSlam, TracksARawlogWithoutPoses)
 {
     const std::string dir = hif::test::kittiRoot() + "/sequences/04";
     HIF_REQUIRE_KITTI_SEQUENCE(dir);
-    const std::string d = fresh("icp_slam_no_poses");
+    const WorkDir work = workDir("icp_slam_no_poses");
+    const std::string& d = work.path();
     const hif::io::KittiSequence seq(dir);
     const std::size_t n = std::min<std::size_t>(15, seq.size());
     {
@@ -141,7 +144,8 @@ TEST(StockIcpSlam, CreatesFeedsAndSavesTheHifMap)
     if (std::system("command -v icp-slam > /dev/null 2>&1") != 0)
         GTEST_SKIP()
             << "icp-slam not installed (Debian package mrpt-apps; scripts/install-deps.sh)";
-    const std::string d = fresh("stock_icp_slam");
+    const WorkDir work = workDir("stock_icp_slam");
+    const std::string& d = work.path();
     auto r = runApp("hif-synthetic-kitti", "-o " + d + "/seq --scans 3");
     ASSERT_EQ(r.code, 0) << r.output;
     r = runApp("kitti2rawlog", "-i " + d + "/seq -o " + d + "/scans.rawlog");

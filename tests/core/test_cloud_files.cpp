@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "hif/io/CloudFiles.h"
+#include "work_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -45,9 +46,16 @@ std::string reference(const std::string& ext, const std::vector<float>& xyzi,
     return h + std::string(reinterpret_cast<const char*>(xyzi.data()), xyzi.size() * 4);
 }
 
-std::string freshDir(const std::string& name)
+/** This test's folder, removed when it passes. */
+hif::test::WorkDir scratch()
 {
-    const fs::path d = fs::temp_directory_path() / ("hif_cloud_" + std::to_string(getpid())) / name;
+    return hif::test::WorkDir(fs::temp_directory_path() /
+                              ("hif_cloud_" + std::to_string(getpid())));
+}
+
+std::string freshDir(const hif::test::WorkDir& work, const std::string& name)
+{
+    const fs::path d = fs::path(work.path()) / name;
     fs::remove_all(d);
     fs::create_directories(d);
     return d.string();
@@ -58,6 +66,7 @@ TEST(CloudWriter, EveryWayOfWritingTheBodyGivesTheReferenceFiles)
 {
     const Eigen::Isometry3d pose =
         Eigen::Translation3d(1.5, -2.25, 0.5) * Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ());
+    const auto work = scratch();
     // Counts, and the expectation given before the first point: none; exact; same number of
     // digits; fewer and more digits than the count (the body moved behind the right header).
     const std::vector<std::pair<std::size_t, std::optional<std::size_t>>> cases = {
@@ -69,7 +78,7 @@ TEST(CloudWriter, EveryWayOfWritingTheBodyGivesTheReferenceFiles)
             SCOPED_TRACE("count " + std::to_string(count) + ", expected " +
                          (expected ? std::to_string(*expected) : "none") +
                          (viewpoint ? ", viewpoint" : ""));
-            const std::string d = freshDir("c" + std::to_string(count));
+            const std::string d = freshDir(work, "c" + std::to_string(count));
             const std::vector<std::string> files{d + "/a.pcd", d + "/b.ply", d + "/c.pcd"};
             std::vector<float> xyzi;
             {
@@ -114,7 +123,8 @@ TEST(CloudWriter, EveryWayOfWritingTheBodyGivesTheReferenceFiles)
 
 TEST(CloudWriter, AnUnfinishedWriterLeavesNoFileAndExpectsOnlyBeforeThePoints)
 {
-    const std::string d = freshDir("unfinished");
+    const auto work = scratch();
+    const std::string d = freshDir(work, "unfinished");
     for (const bool expect : {false, true})
     {
         {
@@ -130,7 +140,8 @@ TEST(CloudWriter, AnUnfinishedWriterLeavesNoFileAndExpectsOnlyBeforeThePoints)
 
 TEST(CloudWriter, ColouredPointsMakeAColouredPly)
 {
-    const std::string d = freshDir("coloured");
+    const auto work = scratch();
+    const std::string d = freshDir(work, "coloured");
     for (const std::optional<std::size_t> expected : {std::optional<std::size_t>{}, {3}, {40}})
     {
         const std::vector<std::string> files{d + "/a.ply", d + "/b.ply"};

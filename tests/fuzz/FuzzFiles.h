@@ -9,15 +9,26 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <string_view>
+#include <system_error>
 #include <vector>
 
 namespace hif::fuzz
 {
-/** A temporary folder for this process, made on first use and emptied by clear(). */
+inline const std::filesystem::path& workDir();
+
+inline void removeWorkDir()
+{
+    std::error_code ec;
+    std::filesystem::remove_all(workDir(), ec);
+}
+
+/** A temporary folder for this process, made on first use and removed when the fuzzer exits
+ *  normally (a crash leaves it, beside the crashing input). */
 inline const std::filesystem::path& workDir()
 {
     static const std::filesystem::path dir = []
@@ -27,6 +38,9 @@ inline const std::filesystem::path& workDir()
         std::filesystem::create_directories(d);
         return d;
     }();
+    // Registered once `dir` is made, so it runs before `dir` is destroyed.
+    static const bool removed_at_exit = std::atexit(removeWorkDir) == 0;
+    (void)removed_at_exit;
     return dir;
 }
 
