@@ -8,14 +8,18 @@
 #
 #   bash scripts/walkers.sh                          # shipped configs
 #   bash scripts/walkers.sh -c share/hif/config/kitti-paper.ini    # extra hif-clean flags
+#   HIF_WALKERS_SCENE=cyclists bash scripts/walkers.sh   # cyclists at 3 to 6 m/s instead
 #
-# Environment: HIF_WALKERS_SEEDS (default "1 2 3"), HIF_WALKERS_SPEEDS (default "0 1 3 5"),
-# HIF_WALKERS_SCANS (default 10), HIF_WALKERS_MODES (default "offline online").
-# Work files go to ${HIF_WALKERS_DIR:-build/walkers}/; clips are generated once and reused.
+# Environment: HIF_WALKERS_SCENE (walkers, the default, or cyclists), HIF_WALKERS_SEEDS
+# (default "1 2 3"), HIF_WALKERS_SPEEDS (default "0 1 3 5"), HIF_WALKERS_SCANS (default 10),
+# HIF_WALKERS_MODES (default "offline online").
+# Work files go to ${HIF_WALKERS_DIR:-build/<scene>}/; clips are generated once and reused.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${HIF_BUILD_DIR:-build}/apps
-ROOT=${HIF_WALKERS_DIR:-build/walkers}
+SCENE=${HIF_WALKERS_SCENE:-walkers}
+case "$SCENE" in walkers|cyclists) ;; *) echo "[walkers] HIF_WALKERS_SCENE=$SCENE is not walkers or cyclists" >&2; exit 1;; esac
+ROOT=${HIF_WALKERS_DIR:-build/$SCENE}
 SEEDS=${HIF_WALKERS_SEEDS:-1 2 3}
 SPEEDS=${HIF_WALKERS_SPEEDS:-0 1 3 5}
 SCANS=${HIF_WALKERS_SCANS:-10}
@@ -33,7 +37,7 @@ for mode in $MODES; do
       clip=v${speed}_s${seed}
       seq=$ROOT/clips/$clip
       if [ ! -f "$seq/scans.rawlog" ]; then
-        "$BIN/hif-synthetic-kitti" -o "$seq" --scene walkers --ego-speed "$speed" --seed "$seed" \
+        "$BIN/hif-synthetic-kitti" -o "$seq" --scene "$SCENE" --ego-speed "$speed" --seed "$seed" \
           -n "$SCANS" --overwrite > /dev/null 2>&1
         "$BIN/kitti2rawlog" -i "$seq" -o "$seq/scans.rawlog" --overwrite > /dev/null 2>&1
       fi
@@ -50,7 +54,7 @@ for mode in $MODES; do
       done
     done
   done
-  echo "[walkers] $mode: $(echo $SPEEDS | wc -w) sensor speeds x $(echo $SEEDS | wc -w) seeds, $SCANS scans each"
+  echo "[walkers] $SCENE, $mode: $(echo $SPEEDS | wc -w) sensor speeds x $(echo $SEEDS | wc -w) seeds, $SCANS scans each"
   "$BIN/hif-eval" --labels "$all/labels" --predictions "$all/predictions" --scans "$all/velodyne" \
     --ego-radius 0 --json "$all/scores.json" -q
 done

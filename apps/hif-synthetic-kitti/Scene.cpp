@@ -28,6 +28,17 @@ void hitBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Box& b, ui
     if (t0 > 1e-6 && t0 < h.t) h = {t0, label};
 }
 
+/** A box of half-extents `half` (along u, v = z x u, and z) centred at `c`, u horizontal. */
+void hitOrientedBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vector3d& c,
+                    const Eigen::Vector3d& u, const Eigen::Vector3d& half, uint32_t label, Hit& h)
+{
+    const Eigen::Vector3d v(-u.y(), u.x(), 0.0);
+    const Eigen::Vector3d oc = o - c;
+    const Eigen::Vector3d o_local(oc.dot(u), oc.dot(v), oc.z());
+    const Eigen::Vector3d d_local(d.dot(u), d.dot(v), d.z());
+    hitBox(o_local, d_local, {-half, half, label}, label, h);
+}
+
 void hitCylinder(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Cylinder& c, Hit& h)
 {
     const double ox = o.x() - c.cx, oy = o.y() - c.cy;
@@ -89,7 +100,7 @@ void Mover::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t, H
 {
     const Eigen::Vector3d c = start + velocity * t;
     const double gz = groundZ(c.x());
-    if (!walker)
+    if (shape == Shape::Box)
     {
         const Eigen::Vector3d half(size.x() / 2, size.y() / 2, 0);
         hitBox(
@@ -99,13 +110,36 @@ void Mover::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t, H
             label, h);
         return;
     }
-    // A person of height size.z(): legs 0.07 m thick up to 49 % of the height, swinging
-    // 0.25 m forward and back at a cadence that grows with speed; a torso 0.18 m in radius up
-    // to 84 %; a head.
     const double speed = velocity.norm();
     const Eigen::Vector3d u =
         speed > 0 ? Eigen::Vector3d(velocity / speed) : Eigen::Vector3d::UnitX();
     const Eigen::Vector3d v(-u.y(), u.x(), 0.0);
+    if (shape == Shape::Cyclist)
+    {
+        // A bicycle 1.72 m long: wheels 0.68 m across and 0.05 m thick, a frame between them;
+        // its rider: legs beside the frame up to the saddle (0.95 m), pedalling, a torso
+        // leaning forward to 1.45 m, a head at 1.6 m.
+        for (const double along : {-0.52, 0.52})
+            hitOrientedBox(o, d, Eigen::Vector3d(c.x(), c.y(), gz + 0.34) + u * along, u,
+                           Eigen::Vector3d(0.34, 0.025, 0.34), label, h);
+        hitOrientedBox(o, d, Eigen::Vector3d(c.x(), c.y(), gz + 0.62), u,
+                       Eigen::Vector3d(0.45, 0.03, 0.14), label, h);
+        const double pedal = 0.15 * std::sin(2 * M_PI * 1.2 * t + phase);
+        for (int side : {-1, 1})
+        {
+            const Eigen::Vector3d leg = c + v * (0.12 * side) + u * (0.05 + pedal * side);
+            hitCylinder(o, d,
+                        {leg.x(), leg.y(), 0.07, gz + 0.35 + 0.1 * side * pedal, gz + 0.95, label},
+                        h);
+        }
+        const Eigen::Vector3d torso = c + u * 0.05;
+        hitCylinder(o, d, {torso.x(), torso.y(), 0.17, gz + 0.95, gz + 1.45, label}, h);
+        hitSphere(o, d, {c + u * 0.3 + Eigen::Vector3d(0, 0, gz + 1.6 - c.z()), 0.11, label}, h);
+        return;
+    }
+    // A person of height size.z(): legs 0.07 m thick up to 49 % of the height, swinging
+    // 0.25 m forward and back at a cadence that grows with speed; a torso 0.18 m in radius up
+    // to 84 %; a head.
     const double height = size.z();
     const double swing =
         0.25 * std::min(1.0, speed) * std::sin(2 * M_PI * (speed / 1.4) * t + phase);
@@ -142,7 +176,8 @@ Hit Scene::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t_now
     }
     if (h.t >= max_range)
         h.label = 0;
-    else if (instance != 0 && !(h.label == kMovingCar || h.label == kMovingPerson))
+    else if (instance != 0 &&
+             !(h.label == kMovingCar || h.label == kMovingPerson || h.label == kMovingBicyclist))
         instance = 0;
     return h;
 }
@@ -208,7 +243,56 @@ Scene walkersScene(std::mt19937& rng, double length, double duration, int groups
             m.size = Eigen::Vector3d(0.5, 0.5, 1.6 + 0.25 * u(rng));
             m.label = kMovingPerson;
             m.instance = id++;
-            m.walker = true;
+            m.shape = Mover::Shape::Walker;
+            m.phase = 2 * M_PI * u(rng);
+            s.movers.push_back(m);
+        }
+    }
+    return s;
+}
+
+Scene cyclistsScene(std::mt19937& rng, double length, double duration, int groups)
+{
+    Scene s;
+    addStreet(s, rng, length);
+    std::uniform_real_distribution<double> u(0, 1);
+    const double speeds[3] = {3.0, 4.5, 6.0};
+    const double t_mid = 0.5 * duration, x_mid = 0.5 * length;
+    uint32_t id = 1;
+    for (int g = 0; g < groups; ++g)
+    {
+        const double speed = speeds[std::min(2, static_cast<int>(3 * u(rng)))];
+        const bool across = u(rng) < 0.3;
+        const double sign = u(rng) < 0.5 ? -1.0 : 1.0;  // direction of riding
+        const double side = u(rng) < 0.5 ? -1.0 : 1.0;  // side of the street
+        // Where the group is at mid-clip: 8 to 35 m from the sensor, mostly ahead.
+        const double dist = 8.0 + 27.0 * u(rng);
+        const double ahead = u(rng) < 0.8 ? 1.0 : -1.0;
+        Eigen::Vector3d mid, vel;
+        if (across)
+        {
+            const double y = side * 4.0 * u(rng);
+            mid = Eigen::Vector3d(x_mid + ahead * std::sqrt(std::max(1.0, dist * dist - y * y)), y,
+                                  0.0);
+            vel = Eigen::Vector3d(0.0, sign * speed, 0.0);
+        }
+        else
+        {
+            const double y = side * (3.6 + 1.2 * u(rng));  // by the parked cars
+            mid = Eigen::Vector3d(x_mid + ahead * std::sqrt(std::max(1.0, dist * dist - y * y)), y,
+                                  0.0);
+            vel = Eigen::Vector3d(sign * speed, 0.0, 0.0);
+        }
+        const int members = u(rng) < 0.6 ? 1 : 2;
+        for (int k = 0; k < members; ++k)
+        {
+            Mover m;
+            m.velocity = vel * (1.0 + 0.05 * (u(rng) - 0.5));
+            m.start = mid - vel / speed * (2.5 * k) - m.velocity * t_mid;  // one behind the other
+            m.size = Eigen::Vector3d(1.72, 0.6, 1.71);
+            m.label = kMovingBicyclist;
+            m.instance = id++;
+            m.shape = Mover::Shape::Cyclist;
             m.phase = 2 * M_PI * u(rng);
             s.movers.push_back(m);
         }

@@ -16,7 +16,7 @@ namespace synth
 {
 // SemanticKITTI classes used by the scenes.
 constexpr uint32_t kRoad = 40, kBuilding = 50, kVegetation = 70, kTrunk = 71, kCar = 10;
-constexpr uint32_t kMovingCar = 252, kMovingPerson = 254;
+constexpr uint32_t kMovingCar = 252, kMovingBicyclist = 253, kMovingPerson = 254;
 
 constexpr double kSensorHeight = 1.73;  // metres above the ground, as on the KITTI car
 constexpr double kSlope = 0.02;         // the street climbs 2 cm per metre along x
@@ -48,16 +48,23 @@ struct Hit
 };
 
 /** Something that moves at a constant velocity: a box of `size` (cars; the street scene's
- *  people), or a walking person: two legs that swing, a torso and a head. */
+ *  people), a walking person (two legs that swing, a torso and a head), or a cyclist (a
+ *  bicycle and its rider). */
 struct Mover
 {
+    enum class Shape : uint8_t
+    {
+        Box,
+        Walker,
+        Cyclist
+    };
     Eigen::Vector3d start;  ///< centre of the bottom face at t = 0
     Eigen::Vector3d velocity;
     Eigen::Vector3d size;
     uint32_t label;
     uint32_t instance;
-    bool walker = false;
-    double phase = 0.0;  ///< of the stride, radians
+    Shape shape = Shape::Box;
+    double phase = 0.0;  ///< of the stride or the pedals, radians
 
     /** Updates `h` if the ray from o along unit d hits the mover at time t before h.t. */
     void cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t, Hit& h) const;
@@ -85,5 +92,10 @@ Scene streetScene(std::mt19937& rng, double length);
  *  across the road, 8 to 25 m from the sensor at mid-clip. The sensor moves along x from 0 to
  *  `length`; `duration` is the clip's length in seconds. */
 Scene walkersScene(std::mt19937& rng, double length, double duration, int groups);
+
+/** The same street with groups of cyclists instead of people: `groups` groups of 1 or 2
+ *  riders (one behind the other) at 3, 4.5 or 6 m/s, along the road by the parked cars, either
+ *  way, or across it, 8 to 35 m from the sensor at mid-clip. */
+Scene cyclistsScene(std::mt19937& rng, double length, double duration, int groups);
 
 }  // namespace synth

@@ -39,7 +39,8 @@ struct Cli
         "labels: a 64-beam scanner (+2 to -24.8 degrees, 1024 columns, 80 m) moving down a "
         "sloping street with buildings, trees and parked cars. Scene 'street': driving at 8 m/s "
         "while cars (class 252) and people (254) move; scene 'walkers': only people walk, in "
-        "groups, along the sidewalks and across the road.",
+        "groups, along the sidewalks and across the road; scene 'cyclists': only cyclists (253) "
+        "ride, along the road and across it.",
         ' ', "0.1"};
     TCLAP::ValueArg<std::string> output{"o",      "output", "Output sequence folder", true, "",
                                         "folder", cmd};
@@ -47,14 +48,21 @@ struct Cli
                                      "N", cmd};
     TCLAP::ValueArg<long long> seed{"",  "seed", "Random seed of the scene (default: 1)", false, 1,
                                     "S", cmd};
-    TCLAP::ValueArg<std::string> scene{
-        "", "scene", "street (default) or walkers", false, "street", "street|walkers", cmd};
+    TCLAP::ValueArg<std::string> scene{"",    "scene",  "street (default), walkers or cyclists",
+                                       false, "street", "street|walkers|cyclists",
+                                       cmd};
     TCLAP::ValueArg<double> ego_speed{
-        "",    "ego-speed", "Speed of the sensor, m/s, >= 0 (default: 8 for street, 3 for walkers)",
-        false, 8.0,         "m/s",
+        "",
+        "ego-speed",
+        "Speed of the sensor, m/s, >= 0 (default: 8 for street, 3 for walkers and cyclists)",
+        false,
+        8.0,
+        "m/s",
         cmd};
     TCLAP::ValueArg<int> groups{
-        "", "groups", "Walkers scene: groups of people (default: 6)", false, 6, "N", cmd};
+        "",    "groups", "Walkers and cyclists scenes: groups of people or cyclists (default: 6)",
+        false, 6,        "N",
+        cmd};
     TCLAP::SwitchArg overwrite{"", "overwrite", "Replace an existing sequence folder", cmd};
 };
 
@@ -76,8 +84,8 @@ int run(Cli& cli)
     hif::apps::makeDirs(dir + "/labels");
 
     const std::string kind = cli.scene.getValue();
-    if (kind != "street" && kind != "walkers")
-        throw std::runtime_error("--scene '" + kind + "' is not street or walkers");
+    if (kind != "street" && kind != "walkers" && kind != "cyclists")
+        throw std::runtime_error("--scene '" + kind + "' is not street, walkers or cyclists");
     const double ego_speed =
         cli.ego_speed.isSet() ? cli.ego_speed.getValue() : (kind == "street" ? 8.0 : 3.0);
     if (!(ego_speed >= 0.0 && ego_speed <= 60.0))
@@ -88,9 +96,11 @@ int run(Cli& cli)
                                  " is not in [0, 100]");
     std::mt19937 rng(seed);
     const double length = ego_speed * kScanPeriod * double(n);
+    const double duration = kScanPeriod * double(n);
     const Scene scene = kind == "street" ? streetScene(rng, length)
-                                         : walkersScene(rng, length, kScanPeriod * double(n),
-                                                        cli.groups.getValue());
+                        : kind == "walkers"
+                            ? walkersScene(rng, length, duration, cli.groups.getValue())
+                            : cyclistsScene(rng, length, duration, cli.groups.getValue());
     std::normal_distribution<double> noise(0.0, 0.01);
 
     // KITTI's LiDAR-to-camera calibration, rounded: camera x = -y, y = -z, z = x.

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include "GridAccess.h"
 #include "RangeImage.h"
@@ -119,30 +121,59 @@ struct ObjectTest
     double min_extent;  ///< metres spanned
     double res;         ///< metres per cell
 
+    /** Entries clear of the ground, counted with the height they span. */
+    struct Extent
+    {
+        std::size_t count = 0;
+        int32_t top = std::numeric_limits<int32_t>::min();
+        int32_t bottom = std::numeric_limits<int32_t>::max();
+
+        void add(int32_t cell)
+        {
+            ++count;
+            top = std::max(top, cell);
+            bottom = std::min(bottom, cell);
+        }
+    };
+
+    struct Found
+    {
+        int32_t low;  ///< the pillar's lowest cell
+        bool object;  ///< the entries to test make an object
+        bool moving;  ///< those already dynamic (the map's verdict) make one
+    };
+
+    [[nodiscard]] bool isObject(const Extent& x) const
+    {
+        return x.count >= 3 && (x.top - x.bottom + 1) * res >= min_extent;
+    }
+
     /** The entries of pillar `p` of `scan` to test (into `tested`): clear of the pillar's
-     *  lowest return, within range, not dynamic already; none unless at least 3 spanning
-     *  min_extent. Returns the pillar's lowest cell. */
-    int32_t entries(const ScanBuckets& scan, std::size_t p, const PointsView& pts,
-                    const std::vector<uint8_t>& is_dynamic, std::vector<uint32_t>& tested) const
+     *  lowest return, within range, not dynamic already; and whether they, or those clear of
+     *  the ground and dynamic already, make an object: at least 3 spanning min_extent. */
+    Found entries(const ScanBuckets& scan, std::size_t p, const PointsView& pts,
+                  const std::vector<uint8_t>& is_dynamic, std::vector<uint32_t>& tested) const
     {
         const uint32_t b = scan.offsets[p], e = scan.offsets[p + 1];
         int32_t low = std::numeric_limits<int32_t>::max();
         for (uint32_t k = b; k < e; ++k) low = std::min(low, scan.cells[k]);
         tested.clear();
-        int32_t top = std::numeric_limits<int32_t>::min();
-        int32_t bottom = std::numeric_limits<int32_t>::max();
+        Extent open, dynamic;
         for (uint32_t k = b; k < e; ++k)
         {
             const uint32_t i = scan.index[k];
-            if (is_dynamic[i] || scan.cells[k] < low + clearance) continue;
+            if (scan.cells[k] < low + clearance) continue;
             const double x = pts.x[i], y = pts.y[i], z = pts.z[i];
             if (x * x + y * y + z * z > range2) continue;
+            if (is_dynamic[i])
+            {
+                dynamic.add(scan.cells[k]);
+                continue;
+            }
             tested.push_back(k);
-            top = std::max(top, scan.cells[k]);
-            bottom = std::min(bottom, scan.cells[k]);
+            open.add(scan.cells[k]);
         }
-        if (tested.size() < 3 || (top - bottom + 1) * res < min_extent) tested.clear();
-        return low;
+        return {low, isObject(open), isObject(dynamic)};
     }
 };
 
@@ -261,12 +292,8 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     };
 
     std::size_t marked = 0;
-    std::vector<uint32_t> tested;
-    for (std::size_t p = 0; p < scan.pillarCount(); ++p)
+    auto mark = [&](std::size_t p, int32_t low)
     {
-        const int32_t low = object.entries(scan, p, pts, is_dynamic, tested);
-        if (tested.empty()) continue;
-        if (!reachesShare(tested, prm.free_space_fraction, verdict)) continue;
         for (uint32_t k = scan.offsets[p]; k < scan.offsets[p + 1]; ++k)
         {
             const uint32_t i = scan.index[k];
@@ -277,6 +304,50 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             is_dynamic[i] = 1;
             ++marked;
         }
+    };
+    std::vector<uint32_t> tested;
+    std::vector<std::pair<int64_t, int64_t>> gone;  // pillars of a mover, (m, n)
+    std::vector<std::size_t> small;  // pillars with too little above the ground for an object
+    for (std::size_t p = 0; p < scan.pillarCount(); ++p)
+    {
+        const auto found = object.entries(scan, p, pts, is_dynamic, tested);
+        bool mover = found.moving;
+        if (found.object)
+        {
+            if (reachesShare(tested, prm.free_space_fraction, verdict))
+            {
+                mark(p, found.low);
+                mover = true;
+            }
+        }
+        else if (!tested.empty())
+            small.push_back(p);
+        if (mover)
+        {
+            const PillarIndex idx = unpackKey(scan.keys[p]);
+            gone.emplace_back(idx.m, idx.n);
+        }
+    }
+    // A mover (shown gone here, or by the map) reaches into the pillars around it with its
+    // lowest parts (feet, wheels, bumpers): too little there to make an object of their own,
+    // they are tested as part of it.
+    std::sort(gone.begin(), gone.end());
+    auto nextToGone = [&](PillarIndex idx)
+    {
+        for (int dm = -1; dm <= 1; ++dm)
+            for (int dn = -1; dn <= 1; ++dn)
+                if ((dm != 0 || dn != 0) &&
+                    std::binary_search(
+                        gone.begin(), gone.end(),
+                        std::pair<int64_t, int64_t>(int64_t{idx.m} + dm, int64_t{idx.n} + dn)))
+                    return true;
+        return false;
+    };
+    for (const std::size_t p : small)
+    {
+        if (!nextToGone(unpackKey(scan.keys[p]))) continue;
+        const auto found = object.entries(scan, p, pts, is_dynamic, tested);
+        if (reachesShare(tested, prm.free_space_fraction, verdict)) mark(p, found.low);
     }
     return marked;
 }
