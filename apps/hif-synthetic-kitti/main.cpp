@@ -74,15 +74,6 @@ int run(Cli& cli)
         hif::apps::flagInRange(cli.scans.getValue(), "--scans", 1, 999999));
     const auto seed = static_cast<std::mt19937::result_type>(
         hif::apps::flagInRange(cli.seed.getValue(), "--seed", 0, 4294967295LL));
-    hif::apps::refuseToOverwrite(dir + "/velodyne", cli.overwrite.getValue(), "--overwrite");
-    if (cli.overwrite.getValue())
-    {
-        fs::remove_all(dir + "/velodyne");
-        fs::remove_all(dir + "/labels");
-    }
-    hif::apps::makeDirs(dir + "/velodyne");
-    hif::apps::makeDirs(dir + "/labels");
-
     const std::string kind = cli.scene.getValue();
     if (kind != "street" && kind != "walkers" && kind != "cyclists")
         throw std::runtime_error("--scene '" + kind + "' is not street, walkers or cyclists");
@@ -94,6 +85,15 @@ int run(Cli& cli)
     if (cli.groups.getValue() < 0 || cli.groups.getValue() > 100)
         throw std::runtime_error("--groups " + std::to_string(cli.groups.getValue()) +
                                  " is not in [0, 100]");
+    hif::apps::refuseToOverwrite(dir + "/velodyne", cli.overwrite.getValue(), "--overwrite");
+    if (cli.overwrite.getValue())
+    {
+        fs::remove_all(dir + "/velodyne");
+        fs::remove_all(dir + "/labels");
+    }
+    hif::apps::makeDirs(dir + "/velodyne");
+    hif::apps::makeDirs(dir + "/labels");
+
     std::mt19937 rng(seed);
     const double length = ego_speed * kScanPeriod * double(n);
     const double duration = kScanPeriod * double(n);

@@ -115,10 +115,13 @@ TEST_F(BadInput, NegativeNumbersAreRejectedNotWrapped)
                 "--scans -1 is not in [1, 999999]");
     expectError(runApp("hif-synthetic-kitti", "-o " + root_ + "/neg_seq --seed -1"),
                 "--seed -1 is not in [0, 4294967295]");
+    expectError(runApp("hif-synthetic-kitti", "-o " + root_ + "/neg_seq --ego-speed -1"),
+                "--ego-speed -1.000000 is not in [0, 60] m/s");
     expectError(
         runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + root_ + "/neg.rawlog --first -2"),
         "--first -2 is not in [0, 5]");
     EXPECT_FALSE(fs::exists(root_ + "/neg"));
+    EXPECT_FALSE(fs::exists(root_ + "/neg_seq")) << "a rejected flag made the output folder";
     EXPECT_FALSE(fs::exists(root_ + "/neg.rawlog"));
 }
 
