@@ -94,6 +94,13 @@ void addStreet(Scene& s, std::mt19937& rng, double length)
                                Eigen::Vector3d(x + 2.1, y + 0.9, gz + 1.5), kCar});
         }
 }
+
+/** Where a group stands at mid-clip: `dist` from the sensor's mid-clip position (x_mid, 0),
+ *  `y` to the side, ahead of it (`ahead` +1) or behind (-1); at least 1 m along x. */
+Eigen::Vector3d groupCentre(double x_mid, double ahead, double dist, double y)
+{
+    return {x_mid + ahead * std::sqrt(std::max(1.0, dist * dist - y * y)), y, 0.0};
+}
 }  // namespace
 
 void Mover::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t, Hit& h) const
@@ -220,17 +227,13 @@ Scene walkersScene(std::mt19937& rng, double length, double duration, int groups
         if (across)
         {
             const double y = side * 4.0 * u(rng);  // on the road
-            const double x =
-                x_mid + (u(rng) < 0.8 ? 1.0 : -1.0) * std::sqrt(std::max(1.0, dist * dist - y * y));
-            mid = Eigen::Vector3d(x, y, 0.0);
+            mid = groupCentre(x_mid, u(rng) < 0.8 ? 1.0 : -1.0, dist, y);
             vel = Eigen::Vector3d(0.0, sign * speed, 0.0);
         }
         else
         {
             const double y = side * (7.2 + 1.2 * u(rng));  // sidewalk, by the parked cars
-            const double x =
-                x_mid + (u(rng) < 0.8 ? 1.0 : -1.0) * std::sqrt(std::max(1.0, dist * dist - y * y));
-            mid = Eigen::Vector3d(x, y, 0.0);
+            mid = groupCentre(x_mid, u(rng) < 0.8 ? 1.0 : -1.0, dist, y);
             vel = Eigen::Vector3d(sign * speed, 0.0, 0.0);
         }
         const int members = u(rng) < 0.5 ? 1 : (u(rng) < 0.6 ? 2 : 3);
@@ -272,15 +275,13 @@ Scene cyclistsScene(std::mt19937& rng, double length, double duration, int group
         if (across)
         {
             const double y = side * 4.0 * u(rng);
-            mid = Eigen::Vector3d(x_mid + ahead * std::sqrt(std::max(1.0, dist * dist - y * y)), y,
-                                  0.0);
+            mid = groupCentre(x_mid, ahead, dist, y);
             vel = Eigen::Vector3d(0.0, sign * speed, 0.0);
         }
         else
         {
             const double y = side * (3.6 + 1.2 * u(rng));  // by the parked cars
-            mid = Eigen::Vector3d(x_mid + ahead * std::sqrt(std::max(1.0, dist * dist - y * y)), y,
-                                  0.0);
+            mid = groupCentre(x_mid, ahead, dist, y);
             vel = Eigen::Vector3d(sign * speed, 0.0, 0.0);
         }
         const int members = u(rng) < 0.6 ? 1 : 2;
