@@ -8,16 +8,19 @@
 #include <mrpt/maps/CPointsMapXYZI.h>
 #include <mrpt/obs/CObservationPointCloud.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "hif/io/KittiSequence.h"
 #include "hif/io/Labels.h"
 
 namespace
 {
-/** World points of a scan and their intensities (0 when the scan has none). */
-void worldPoints(const hif::apps::Scan& scan, std::vector<float>& x, std::vector<float>& y,
-                 std::vector<float>& z, std::vector<float>& intensity)
+/** World points of a scan (in double: UTM coordinates keep their millimetres) and their
+ *  intensities (0 when the scan has none). */
+void worldPoints(const hif::apps::Scan& scan, std::vector<double>& x, std::vector<double>& y,
+                 std::vector<double>& z, std::vector<float>& intensity)
 {
     scan.obs->load();
     if (!hif::CHeightIntervalMap::observationToWorldPoints(*scan.obs, scan.robot_pose, x, y, z))
@@ -45,10 +48,11 @@ Outputs::Outputs(const std::string& dir, std::optional<std::size_t> first_frame,
 void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::apps::Scan& scan,
                                std::size_t k, const hif::ScanWindow* window)
 {
-    auto& [x, y, z, intensity] = buf_;
+    auto& [x, y, z] = xyz_;
+    std::vector<float>& intensity = intensity_;
     worldPoints(scan, x, y, z, intensity);
     // Classified from the observation and its pose, exactly as it was inserted (the world
-    // points above, in float, are what the clouds get).
+    // points above are what the clouds get).
     const auto t0 = Clock::now();
     std::vector<uint8_t> dyn;
     const auto st = window ? map.classify(*scan.obs, scan.robot_pose, dyn, *window, k)
@@ -75,7 +79,7 @@ void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::ap
     if (rawlog_) rawlog_->write(scan, dyn);
     if (view_)
         for (std::size_t i = 0; i < dyn.size(); ++i)
-            view_->add(x[i], y[i], z[i],
+            view_->add(x[i], y[i], static_cast<float>(z[i]),
                        dyn[i] ? hif::apps::TopView::kRemoved : hif::apps::TopView::kKept);
     std::size_t frame = first_frame_.value_or(0) + k;
     if (scan.frame)
@@ -105,22 +109,56 @@ void Outputs::pictureCovers(const hif::CHeightIntervalMap& map)
     if (!view_) return;
     const auto pillars = map.grid().sortedPillars();
     if (pillars.empty()) return;
-    int m0 = pillars.front().first.m, m1 = m0, n0 = pillars.front().first.n, n1 = n0;
+    // The map's main area, in blocks of about 32 m: a stray point or pose far from the rest
+    // must not set the picture's scale.
+    const hif::GridGeometry& g = map.geometry();
+    const auto per_block = static_cast<int64_t>(std::max(1.0, std::round(32.0 / g.pillar_size)));
+    const auto block = [per_block](int32_t i)
+    { return i >= 0 ? i / per_block : -((-int64_t{i} - 1) / per_block) - 1; };
+    std::vector<hif::apps::WeightedBlock> blocks;
     for (const auto& [idx, pillar] : pillars)
     {
-        m0 = std::min(m0, idx.m);
-        m1 = std::max(m1, idx.m);
-        n0 = std::min(n0, idx.n);
-        n1 = std::max(n1, idx.n);
+        const int64_t bx = block(idx.m), by = block(idx.n);
+        if (blocks.empty() || blocks.back().bx != bx || blocks.back().by != by)
+            blocks.push_back({bx, by, 0});
+        ++blocks.back().weight;
     }
-    const hif::GridGeometry& g = map.geometry();
-    view_->cover(g.origin_x + m0 * g.pillar_size, g.origin_y + n0 * g.pillar_size,
-                 g.origin_x + (m1 + 1) * g.pillar_size, g.origin_y + (n1 + 1) * g.pillar_size);
+    // Sorted by (m, n), equal blocks need not be adjacent: merge them.
+    std::sort(blocks.begin(), blocks.end(),
+              [](const auto& a, const auto& b)
+              { return a.bx != b.bx ? a.bx < b.bx : a.by < b.by; });
+    std::vector<hif::apps::WeightedBlock> merged;
+    for (const auto& b : blocks)
+        if (!merged.empty() && merged.back().bx == b.bx && merged.back().by == b.by)
+            merged.back().weight += b.weight;
+        else
+            merged.push_back(b);
+    const double block_m = double(per_block) * g.pillar_size;
+    const std::vector<bool> in = hif::apps::mainArea(
+        merged, static_cast<int64_t>(std::ceil(hif::apps::kAreaLinkMetres / block_m)));
+    int64_t m0 = std::numeric_limits<int64_t>::max(), m1 = std::numeric_limits<int64_t>::min();
+    int64_t n0 = m0, n1 = m1;
+    for (const auto& [idx, pillar] : pillars)
+    {
+        const auto it = std::lower_bound(
+            merged.begin(), merged.end(), hif::apps::WeightedBlock{block(idx.m), block(idx.n), 0},
+            [](const auto& a, const auto& b) { return a.bx != b.bx ? a.bx < b.bx : a.by < b.by; });
+        if (!in[std::size_t(it - merged.begin())]) continue;
+        m0 = std::min<int64_t>(m0, idx.m);
+        m1 = std::max<int64_t>(m1, idx.m);
+        n0 = std::min<int64_t>(n0, idx.n);
+        n1 = std::max<int64_t>(n1, idx.n);
+    }
+    view_->cover(g.origin_x + double(m0) * g.pillar_size, g.origin_y + double(n0) * g.pillar_size,
+                 g.origin_x + double(m1 + 1) * g.pillar_size,
+                 g.origin_y + double(n1 + 1) * g.pillar_size);
 }
 
-std::pair<int, int> Outputs::writePicture(const std::string& file, const std::string& title) const
+std::optional<hif::apps::TopView::Picture> Outputs::writePicture(const std::string& file,
+                                                                 const std::string& title) const
 {
-    return view_ ? view_->write(file, title, false) : std::pair<int, int>{0, 0};
+    if (!view_ || view_->empty()) return std::nullopt;
+    return view_->write(file, title, false);
 }
 
 std::size_t Outputs::closeRawlog()

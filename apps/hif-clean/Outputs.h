@@ -60,16 +60,29 @@ public:
     {
         classes_.emplace(std::vector<std::string>{file}, hif::io::CloudWriter::Record::XyzRgb);
     }
-    /** Also writes every scan without its dynamic points to `file`, an MRPT rawlog. */
-    void writeRawlog(const std::string& file) { rawlog_.emplace(file, 0); }
+    /** Also writes every scan without its dynamic points to `file`, an MRPT rawlog (the one
+     *  the user named `name`). */
+    void writeRawlog(const std::string& file, const std::string& name)
+    {
+        rawlog_.emplace(file, 0, name);
+    }
     /** The cleaned rawlog, if written: completes it and says how many scans it holds. */
     std::size_t closeRawlog();
     /** Also draws every point into a bird's-eye picture (see writePicture()). */
     void drawPicture() { view_.emplace(); }
-    /** The picture will cover the map's area (so it need not grow as points come). */
+    /** Before the first point: the picture's cells sized for the map's main area. */
     void pictureCovers(const hif::CHeightIntervalMap& map);
-    /** Writes the picture as a PNG, if drawn; returns its {width, height}, or {0, 0}. */
-    std::pair<int, int> writePicture(const std::string& file, const std::string& title) const;
+    /** Writes the picture as a PNG, if drawn and any point can be drawn; says how. */
+    [[nodiscard]] std::optional<hif::apps::TopView::Picture> writePicture(
+        const std::string& file, const std::string& title) const;
+    /** Whether the clouds hold float64 coordinates (some point at 8 km or more from the
+     *  origin: UTM and the like). */
+    [[nodiscard]] bool doubleCoordinates() const
+    {
+        return kept_cloud_.doubleCoordinates() || removed_cloud_.doubleCoordinates();
+    }
+    /** Whether a picture is drawn. */
+    [[nodiscard]] bool drawsPicture() const { return view_.has_value(); }
     /** Completes the cloud files. */
     void close();
 
@@ -82,8 +95,9 @@ private:
     hif::io::CloudWriter kept_cloud_, removed_cloud_;
     std::string pred_dir_;
     std::optional<std::size_t> first_frame_;
-    std::vector<bool> written_;  ///< frame numbers written, to refuse a second scan of one
-    std::vector<float> buf_[4];  ///< x, y, z, intensity of the current scan
+    std::vector<bool> written_;     ///< frame numbers written, to refuse a second scan of one
+    std::vector<double> xyz_[3];    ///< world x, y, z of the current scan
+    std::vector<float> intensity_;  ///< its intensities
     std::optional<hif::apps::TopView> view_;
     std::optional<RawlogOut> rawlog_;
     std::optional<hif::io::CloudWriter> classes_;

@@ -14,6 +14,8 @@
 #include <mrpt/obs/CObservationVelodyneScan.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <cerrno>
+#include <cstring>
 #include <stdexcept>
 
 #include "hif/apps/FrameComment.h"
@@ -108,9 +110,17 @@ mrpt::obs::CObservation::Ptr withoutDynamic(const mrpt::obs::CObservation& obs,
 }
 }  // namespace
 
-RawlogOut::RawlogOut(const std::string& file, int level) : file_(file)
+RawlogOut::RawlogOut(const std::string& file, int level, std::string name) : name_(std::move(name))
 {
-    if (!out_.open(file, level)) throw std::runtime_error("cannot create '" + file + "'");
+    if (!out_.open(file, level))
+        throw std::runtime_error("--rawlog-out '" + name_ +
+                                 "' cannot be created: " + std::strerror(errno));
+}
+
+void RawlogOut::throwWriteError(int err) const
+{
+    throw std::runtime_error("--rawlog-out '" + name_ + "' could not be written (disk full?): " +
+                             (err != 0 ? std::strerror(err) : "write failed"));
 }
 
 void RawlogOut::write(const hif::apps::Scan& scan, const std::vector<uint8_t>& dynamic)
@@ -123,7 +133,7 @@ void RawlogOut::write(const hif::apps::Scan& scan, const std::vector<uint8_t>& d
         c->sensorLabel = "KITTI_FRAME";
         c->timestamp = stamp;
         c->text = hif::apps::kittiFrameComment(*scan.frame);
-        arch << *c;
+        writeOrThrow(arch, *c);
     }
     if (scan.has_pose)
     {
@@ -132,11 +142,31 @@ void RawlogOut::write(const hif::apps::Scan& scan, const std::vector<uint8_t>& d
         p->timestamp = stamp;
         p->pose.mean = scan.robot_pose;
         p->pose.cov.setZero();
-        arch << *p;
+        writeOrThrow(arch, *p);
     }
-    arch << *withoutDynamic(*scan.obs, dynamic);
+    const auto clean = withoutDynamic(*scan.obs, dynamic);
+    writeOrThrow(arch, *clean);
     for (const uint8_t d : dynamic) points_dropped += d;
     ++scans;
 }
 
-void RawlogOut::close() { out_.close(); }
+void RawlogOut::writeOrThrow(mrpt::serialization::CArchive& arch,
+                             const mrpt::serialization::CSerializable& obj)
+{
+    errno = 0;
+    try
+    {
+        arch << obj;
+    }
+    catch (const std::exception&)
+    {
+        throwWriteError(errno);
+    }
+}
+
+void RawlogOut::close()
+{
+    errno = 0;
+    out_.close();
+    if (errno == ENOSPC || errno == EFBIG) throwWriteError(errno);  // the last flush
+}

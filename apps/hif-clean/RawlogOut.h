@@ -7,6 +7,7 @@
 #pragma once
 
 #include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/serialization/CArchive.h>
 
 #include <cstdint>
 #include <string>
@@ -22,8 +23,9 @@
 class RawlogOut
 {
 public:
-    /** Creates `file` (gzip level `level`, 0 for none); throws naming it on failure. */
-    RawlogOut(const std::string& file, int level);
+    /** Creates `file` (gzip level `level`, 0 for none), the rawlog the user named `name`;
+     *  throws naming it on failure, here or when writing. */
+    RawlogOut(const std::string& file, int level, std::string name);
     /** `dynamic` has one entry per point of the scan, as the map classified it. */
     void write(const hif::apps::Scan& scan, const std::vector<uint8_t>& dynamic);
     void close();
@@ -31,6 +33,10 @@ public:
     std::size_t scans = 0, points_dropped = 0;
 
 private:
-    std::string file_;
+    [[noreturn]] void throwWriteError(int err) const;
+    void writeOrThrow(mrpt::serialization::CArchive& arch,
+                      const mrpt::serialization::CSerializable& obj);
+
+    std::string name_;
     mrpt::io::CFileGZOutputStream out_;
 };

@@ -33,7 +33,7 @@ public:
     bool next(Scan& out) override
     {
         using namespace mrpt::obs;
-        if (frame_scans_.next(out)) return counted(true);
+        if (frame_scans_.next(out)) return counted(true, out);
         auto arch = mrpt::serialization::archiveFrom(*in_);
         for (;;)
         {
@@ -79,7 +79,7 @@ public:
                     throwNoPose();
                 frame_scans_.assign(*sf, have_pose_ ? pose_ : mrpt::poses::CPose3D(), have_pose_);
                 have_pose_ = false;
-                if (frame_scans_.next(out)) return counted(true);
+                if (frame_scans_.next(out)) return counted(true, out);
                 continue;
             }
             auto obs = std::dynamic_pointer_cast<CObservation>(obj);
@@ -93,7 +93,7 @@ public:
                    have_pose_};
             have_pose_ = false;  // every scan needs its own pose: never reuse a stale one
             frame_.reset();      // and its own number
-            return counted(true);
+            return counted(true, out);
         }
     }
 
@@ -115,8 +115,12 @@ private:
         in_ = std::make_unique<mrpt::io::CFileGZInputStream>();
         if (!in_->open(file_)) throw std::runtime_error("cannot open rawlog '" + file_ + "'");
     }
-    bool counted(bool got)
+    /** A scan handed out: counted, and its external points checked. */
+    bool counted(bool got, const Scan& out)
     {
+        if (got)
+            checkExternalPoints(*out.obs,
+                                "rawlog '" + file_ + "', scan " + std::to_string(scans_read_));
         scans_read_ += got ? 1 : 0;
         return got;
     }

@@ -63,6 +63,10 @@ public:
         return source_->skippedObjects();
     }
     [[nodiscard]] bool isDynamicMapFolder() const override { return source_->isDynamicMapFolder(); }
+    [[nodiscard]] std::vector<std::string> warnings() const override
+    {
+        return source_->warnings();  // set when the source was opened, before the reader ran
+    }
 
 private:
     /** Asks the reader for the next scan. */

@@ -5,6 +5,7 @@
  */
 #include "ScanSource.h"
 
+#include <mrpt/io/lazy_load_path.h>
 #include <mrpt/maps/CPointsMapXYZI.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
@@ -44,6 +45,58 @@ std::unique_ptr<ScanSource> openSource(const std::string& path, bool poses_requi
     return openRawlog(path, poses_required);
 }
 }  // namespace
+
+void describeInputs(const std::string& path, RunFiles& files)
+{
+    const fs::path p(path);
+    if (fs::is_directory(p / "velodyne"))
+    {
+        files.inputFolder((p / "velodyne").string(), ".bin", "the scans of -i");
+        for (const char* f : {"poses.txt", "calib.txt", "times.txt"})
+            files.input((p / f).string(), std::string("the ") + f + " of -i");
+    }
+    else if (fs::is_directory(p / "pcd"))
+        files.inputFolder((p / "pcd").string(), ".pcd", "the scans of -i");
+    else
+        files.input(path, "the input (-i)");
+}
+
+namespace
+{
+/** The format of an externally stored point cloud, which MRPT 2.5.8 keeps protected without a
+ *  getter (read through a pointer to the member, which a derived class may form). */
+struct ExternalFormat : mrpt::obs::CObservationPointCloud
+{
+    static ExternalStorageFormat of(const mrpt::obs::CObservationPointCloud& pc)
+    {
+        return pc.*(&ExternalFormat::m_externally_stored);
+    }
+};
+}  // namespace
+
+void checkExternalPoints(const mrpt::obs::CObservation& obs, const std::string& where)
+{
+    using Format = mrpt::obs::CObservationPointCloud::ExternalStorageFormat;
+    const auto* pc = dynamic_cast<const mrpt::obs::CObservationPointCloud*>(&obs);
+    if (!pc || !pc->isExternallyStored() || pc->pointcloud) return;
+    const std::string file = mrpt::io::lazy_load_absolute_path(pc->getExternalStorageFile());
+    const std::string its = where + ": its points are in the external file '" + file + "'";
+    std::error_code ec;
+    if (!fs::exists(file, ec))
+        throw std::runtime_error(its +
+                                 ", which does not exist (moved or deleted? a rawlog made "
+                                 "with kitti2rawlog --external needs the sequence folder "
+                                 "where it was)");
+    if (!fs::is_regular_file(file, ec)) throw std::runtime_error(its + ", which is not a file");
+    if (ExternalFormat::of(*pc) == Format::KittiBinFile)
+    {
+        const auto bytes = fs::file_size(file, ec);
+        if (ec || bytes == 0 || bytes % 16 != 0)
+            throw std::runtime_error(its + ", which is " + std::to_string(ec ? 0 : bytes) +
+                                     " bytes: not a whole number of points (16 bytes each: x y "
+                                     "z intensity as float32), truncated?");
+    }
+}
 
 std::unique_ptr<ScanSource> openScanSource(const std::string& path, PrepareScan prepare,
                                            bool poses_required)

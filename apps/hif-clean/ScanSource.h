@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "hif/ScanWindow.h"
+#include "hif/apps/RunFiles.h"
 #include "hif/io/Cloud.h"
 
 namespace hif::apps
@@ -57,7 +58,18 @@ public:
     [[nodiscard]] virtual std::size_t skippedObjects() const { return 0; }
     /** True for a DynamicMap benchmark folder (whose result goes to <folder>/hif_output.pcd). */
     [[nodiscard]] virtual bool isDynamicMapFolder() const { return false; }
+    /** What the source found odd but could read past (files it ignored), one line each. */
+    [[nodiscard]] virtual std::vector<std::string> warnings() const { return {}; }
 };
+
+/** Adds to `files` what reading `path` reads (see openScanSource()): a rawlog or simple map
+ *  file, or a folder's scan files and its poses, calibration and times. */
+void describeInputs(const std::string& path, RunFiles& files);
+
+/** Throws std::runtime_error naming `where` and the file if `obs` keeps its points in an
+ *  external file (MRPT lazy load) that is missing, not a file, or (a KITTI .bin) empty or not a
+ *  whole number of points: MRPT would stop with an assertion, or read half a scan. */
+void checkExternalPoints(const mrpt::obs::CObservation& obs, const std::string& where);
 
 /** Opens `path`: a folder with velodyne/ is a KITTI sequence, a folder with pcd/ a DynamicMap
  *  folder, a *.simplemap file a simple map, anything else a rawlog (plain or gzip). The source

@@ -33,6 +33,8 @@ public:
                                          std::to_string(pos_ - 1) + " has no pose or no frame");
             frame_.assign(*sf, pose_pdf->getMeanVal());
         }
+        checkExternalPoints(*out.obs,
+                            "simple map '" + file_ + "', entry " + std::to_string(pos_ - 1));
         return true;
     }
 

@@ -57,6 +57,12 @@ void writeSummary(const std::string& file, const SummaryInfo& info,
     j["total_s"] = t.total_s;
     j["peak_rss_mb"] = hif::apps::peakRssMiB();
     j["skipped_objects"] = info.skipped_objects;
+    j["cloud_coordinates"] = out.doubleCoordinates() ? "float64" : "float32";
+    if (info.picture)
+        j["picture"] = {{"width", info.picture->width},
+                        {"height", info.picture->height},
+                        {"cell_m", info.picture->cell_metres},
+                        {"points_outside", info.picture->points_outside}};
     nlohmann::ordered_json pj;
     addFields(pj, map.geometry());
     addFields(pj, map.params());
@@ -91,6 +97,7 @@ void printReport(const std::string& tag, const std::string& out_dir, const std::
         << tag << " total " << t.total_s << " s, peak memory " << hif::apps::peakRssMiB()
         << " MiB\n"
         << tag << " wrote " << out_dir << "/{static_map,removed}."
-        << (format == "both" ? "{ply,pcd}" : format) << ", map.png, predictions/, "
+        << (format == "both" ? "{ply,pcd}" : format) << (out.drawsPicture() ? ", map.png" : "")
+        << ", predictions/, "
         << "map.hifmap, summary.json" << (dm_output.empty() ? "" : " and " + dm_output) << "\n";
 }

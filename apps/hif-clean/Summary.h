@@ -5,6 +5,7 @@
  */
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "Outputs.h"
@@ -15,6 +16,7 @@ struct SummaryInfo
     bool online = false;
     bool held_scans = false;
     std::size_t skipped_objects = 0;
+    std::optional<hif::apps::TopView::Picture> picture;  ///< map.png, if drawn
 };
 
 /** summary.json: counts, map size, timings and every parameter of the map. */

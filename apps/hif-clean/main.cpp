@@ -25,7 +25,8 @@
 #include "Summary.h"
 #include "hif/CHeightIntervalMap.h"
 #include "hif/apps/Cli.h"
-#include "hif/apps/ShippedConfig.h"
+#include "hif/apps/Config.h"
+#include "hif/apps/RunFiles.h"
 #include "hif/apps/Staged.h"
 
 namespace fs = std::filesystem;
@@ -167,8 +168,13 @@ struct Run
     hif::CHeightIntervalMap::Ptr hif_map;
 };
 
+/** What hif-clean writes into its output folder (and replaces, with --overwrite). */
+const std::vector<std::string> kOutputNames{
+    "summary.json", "map.hifmap",  "static_map.ply", "static_map.pcd", "removed.ply",
+    "removed.pcd",  "predictions", "map.png",        "map.3Dscene",    "classes.ply"};
+
 /** Checks the command line, opens the input, creates the maps; refuses to replace earlier
- *  results unless asked. */
+ *  results unless asked, and any output that is an input or another output of the run. */
 void setUp(Cli& cli, Run& run)
 {
     run.input = cli.input.getValue();
@@ -177,13 +183,9 @@ void setUp(Cli& cli, Run& run)
     run.hold_scans = cli.hold_scans.getValue();
     run.show_progress = !cli.quiet.getValue();
     run.section = cli.section.getValue();
-    // Earlier results are replaced only when asked, and only once the new ones are complete.
-    run.staged = std::make_unique<hif::apps::StagedFolder>(
-        run.out_dir,
-        std::vector<std::string>{"summary.json", "map.hifmap", "static_map.ply", "static_map.pcd",
-                                 "removed.ply", "removed.pcd", "predictions", "map.png",
-                                 "map.3Dscene", "classes.ply"},
-        cli.overwrite.getValue(), "--overwrite");
+    if (run.hold_scans && run.online)
+        throw std::runtime_error("--hold-scans applies to offline mode only (not --online)");
+    if (cli.threads.isSet()) hif::apps::flagInRange(cli.threads.getValue(), "--threads", 1, 1024);
 
     run.source = hif::apps::openScanSource(run.input,
                                            [&run](hif::apps::Scan& s)
@@ -194,22 +196,35 @@ void setUp(Cli& cli, Run& run)
                                                    hif::CHeightIntervalMap::makeWindowScan(
                                                        run.window_ids++, *s.obs, s.robot_pose);
                                            });
-    if (run.source->isDynamicMapFolder())
-    {
-        run.dm_output = hif::apps::cleanDir(run.input) + "/hif_output.pcd";
-        run.staged_dm = std::make_unique<hif::apps::StagedFile>(
-            run.dm_output, cli.overwrite.getValue(), "--overwrite");
-    }
-    if (cli.rawlog_out.isSet())
-        run.staged_rawlog = std::make_unique<hif::apps::StagedFile>(
-            cli.rawlog_out.getValue(), cli.overwrite.getValue(), "--overwrite");
     run.cfg_file = cli.config.isSet() ? cli.config.getValue()
                                       : defaultConfig(run.online, run.source->isDynamicMapFolder());
-    if (!fs::exists(run.cfg_file))
-        throw std::runtime_error("config '" + run.cfg_file + "' not found");
+    hif::apps::checkConfigFile(run.cfg_file);
+    if (run.source->isDynamicMapFolder())
+        run.dm_output = hif::apps::cleanDir(run.input) + "/hif_output.pcd";
+
+    // No output may be an input or another output of this run, with or without --overwrite.
+    hif::apps::RunFiles files;
+    hif::apps::describeInputs(run.input, files);
+    files.input(run.cfg_file, "the config");
+    for (const std::string& n : kOutputNames)
+        files.output(run.out_dir + "/" + n, "the " + n + " of -o", n == "predictions");
+    if (!run.dm_output.empty()) files.output(run.dm_output, "the DynamicMap result");
+    if (cli.rawlog_out.isSet()) files.output(cli.rawlog_out.getValue(), "--rawlog-out");
+
+    // Earlier results are replaced only when asked, and only once the new ones are complete.
+    const bool overwrite = cli.overwrite.getValue();
+    run.staged = std::make_unique<hif::apps::StagedFolder>(run.out_dir, kOutputNames, overwrite,
+                                                           "--overwrite");
+    if (!run.dm_output.empty())
+        run.staged_dm = std::make_unique<hif::apps::StagedFile>(run.dm_output, overwrite,
+                                                                "the DynamicMap result");
+    if (cli.rawlog_out.isSet())
+        run.staged_rawlog = std::make_unique<hif::apps::StagedFile>(cli.rawlog_out.getValue(),
+                                                                    overwrite, "--rawlog-out");
 
     // Maps from the .ini, through MRPT's own machinery.
     mrpt::config::CConfigFile cfg(run.cfg_file);
+    hif::apps::checkMapCounts(cfg, run.section, run.cfg_file);
     mrpt::maps::TSetOfMetricMapInitializers inits;
     inits.loadFromConfigFile(cfg, run.section);
     run.maps.setListOfMaps(inits);
@@ -222,12 +237,9 @@ void setUp(Cli& cli, Run& run)
     run.hif_map->insertionOptions.online_window = run.online;
     if (cli.threads.isSet())
     {
-        run.hif_map->insertionOptions.threads = static_cast<uint64_t>(
-            hif::apps::flagInRange(cli.threads.getValue(), "--threads", 1, 1024));
+        run.hif_map->insertionOptions.threads = static_cast<uint64_t>(cli.threads.getValue());
         run.hif_map->applyOptions();
     }
-    if (run.hold_scans && run.online)
-        throw std::runtime_error("--hold-scans applies to offline mode only (not --online)");
 }
 
 void printHeader(const Run& run)
@@ -240,6 +252,24 @@ void printHeader(const Run& run)
                              : "offline (all scans inserted, then every point classified)")
               << "\n"
               << kTag << " output : " << run.out_dir << "\n";
+    for (const std::string& w : run.source->warnings())
+        std::cout << kTag << " warning: " << w << "\n";
+}
+
+/** Refuses a scan with points outside the map's grid (a pose or an origin far off): they could
+ *  be neither kept nor judged. */
+void checkInsideGrid(const Run& run, std::size_t scan)
+{
+    const hif::InsertStats& st = run.hif_map->lastInsertStats();
+    if (st.points_outside_grid == 0) return;
+    const hif::GridGeometry& g = run.hif_map->geometry();
+    std::ostringstream msg;
+    msg << "scan " << scan << " of '" << run.input << "': " << st.points_outside_grid
+        << " of its points lie outside the map's grid (more than 2^31 pillars of " << g.pillar_size
+        << " m, or 2^31 height cells of " << g.height_resolution << " m, from the origin ("
+        << g.origin_x << ", " << g.origin_y
+        << ")): check the scan's pose, or origin_x and origin_y in '" << run.cfg_file << "'";
+    throw std::runtime_error(msg.str());
 }
 
 /** Points of a scan when its type says so without converting it (a point cloud), else 0. */
@@ -263,6 +293,7 @@ std::vector<hif::apps::Scan> insertAll(Run& run, Outputs& out, Timings& t)
         const auto t0 = Clock::now();
         run.maps.insertObservation(*scan.obs, scan.robot_pose);
         const double ms = msSince(t0);
+        checkInsideGrid(run, t.scans);
         t.insert_ms.push_back(ms);
         t.points += pointsOf(*scan.obs);
         if (run.online)
@@ -357,7 +388,7 @@ int runClean(Cli& cli)
             hif::apps::flagInRange(cli.first_frame.getValue(), "--first-frame", 0, 999999));
     Outputs out(dir, first_frame, std::move(static_files), std::move(removed_files));
     if (!cli.no_png.getValue()) out.drawPicture();
-    if (run.staged_rawlog) out.writeRawlog(run.staged_rawlog->path());
+    if (run.staged_rawlog) out.writeRawlog(run.staged_rawlog->path(), cli.rawlog_out.getValue());
     if (cli.classes_ply.getValue()) out.writeClasses(dir + "/classes.ply");
     Timings t;
     t.setup_s = msSince(t_start) / 1000.0;
@@ -382,14 +413,14 @@ int runClean(Cli& cli)
     title << "hif-clean " << fs::path(run.input).filename().string() << ": " << t.scans
           << " scans, " << out.points_kept << " points kept, " << out.points_removed
           << " removed (red)";
-    out.writePicture(dir + "/map.png", title.str());
+    const auto picture = out.writePicture(dir + "/map.png", title.str());
     if (cli.scene.getValue()) run.hif_map->saveSceneToFile(dir + "/map.3Dscene");
     t.finish_s = msSince(t_files) / 1000.0;
     t.files_ms = msSince(t_files) + out.write_ms_total;
     t.total_s = msSince(t_start) / 1000.0;
 
-    SummaryInfo info{run.input, run.cfg_file, run.online, run.hold_scans,
-                     run.source->skippedObjects()};
+    SummaryInfo info{
+        run.input, run.cfg_file, run.online, run.hold_scans, run.source->skippedObjects(), picture};
     writeSummary(dir + "/summary.json", info, *run.hif_map, out, t);
     run.staged->commit();
     if (run.staged_dm) run.staged_dm->commit();
@@ -400,6 +431,13 @@ int runClean(Cli& cli)
                   << " scans without their dynamic points" << std::endl;
     }
     printReport(kTag, run.out_dir, format, run.dm_output, run.online, *run.hif_map, out, t);
+    if (out.drawsPicture() && !picture)
+        std::cout << kTag << " map.png not drawn: no point could be drawn\n";
+    if (picture && picture->points_outside > 0)
+        std::cout << kTag << " map.png shows the map's main area: " << picture->points_outside
+                  << " of " << picture->points
+                  << " points lie apart from it (more than 100 m of empty ground away: stray "
+                     "points, or poses far off) and are not drawn\n";
     return 0;
 }
 }  // namespace

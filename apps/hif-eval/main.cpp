@@ -17,8 +17,11 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <tuple>
 
 #include "hif/apps/Cli.h"
+#include "hif/apps/RunFiles.h"
+#include "hif/apps/Staged.h"
 #include "hif/apps/TopView.h"
 #include "hif/io/Breakdown.h"
 #include "hif/io/CloudFiles.h"
@@ -39,8 +42,9 @@ struct Cli
         "removed / dynamic, AA = sqrt(SA DA), HA = their harmonic mean, in percent; also DA "
         "per moving class and, with --scans, SA and DA per range band. Every prediction file "
         "that has a label file of the same name is scored (the sizes must match); predictions "
-        "without ground truth (e.g. scans past the labelled part of a sequence) are counted and "
-        "reported.",
+        "without ground truth (e.g. scans past the labelled part of a sequence), label files "
+        "without a prediction, and prediction values that are neither 9 (static) nor 251-259 "
+        "(moving) are counted and reported.",
         ' ', "0.1"};
     TCLAP::ValueArg<std::string> labels{
         "", "labels", "Ground-truth folder (NNNNNN.label)", true, "", "folder", cmd};
@@ -94,6 +98,10 @@ struct Cli
         cmd};
     TCLAP::ValueArg<std::string> json{
         "", "json", "Also write the scores to this JSON file", false, "", "file.json", cmd};
+    TCLAP::SwitchArg overwrite{"", "overwrite",
+                               "Replace the files of --json, --png and --classes-ply if they exist "
+                               "(never an input of the run)",
+                               cmd};
     TCLAP::SwitchArg quiet{"q", "quiet", "Print the totals only, not every scan", cmd};
 };
 
@@ -139,30 +147,61 @@ std::vector<double> ranges(const std::string& dir, const std::string& stem, std:
         if (c.size() != n)
             hif::io::throwFileError(pcd.string(), "does not hold the " + std::to_string(n) +
                                                       " points of its label file");
+        if (!c.has_viewpoint)
+            hif::io::throwFileError(pcd.string(),
+                                    "has no VIEWPOINT line (the sensor pose), so its points' "
+                                    "ranges are unknown");
         const Eigen::Vector3d s = c.viewpoint.translation();
-        for (std::size_t i = 0; i < n; ++i)
-            r.push_back((Eigen::Vector3d(c.x[i], c.y[i], c.z[i]) - s).norm());
+        for (std::size_t i = 0; i < n; ++i) r.push_back((c.point(i) - s).norm());
         return r;
     }
     hif::io::throwFileError(dir, "has neither " + stem + ".bin nor " + stem + ".pcd");
 }
 
+/** World points of a scan, in double (UTM coordinates keep their millimetres). */
+struct WorldPoints
+{
+    std::vector<double> x, y, z;
+    [[nodiscard]] std::size_t size() const { return x.size(); }
+};
+
 /** The points of scan `stem` of `dir` in the world frame: a KITTI velodyne folder's at the
  *  poses of its sequence (`seq`), a DynamicMap pcd folder's as they are. */
-hif::io::Cloud worldPoints(const std::string& dir, const std::string& stem,
-                           const std::optional<hif::io::KittiSequence>& seq)
+WorldPoints worldPoints(const std::string& dir, const std::string& stem,
+                        const std::optional<hif::io::KittiSequence>& seq)
 {
+    WorldPoints w;
+    const auto put = [&w](const Eigen::Vector3d& p)
+    {
+        w.x.push_back(p.x());
+        w.y.push_back(p.y());
+        w.z.push_back(p.z());
+    };
     const fs::path pcd = fs::path(dir) / (stem + ".pcd");
-    if (fs::exists(pcd)) return hif::io::readPcd(pcd.string());
+    if (fs::exists(pcd))
+    {
+        const hif::io::PcdCloud c = hif::io::readPcd(pcd.string());
+        for (std::size_t i = 0; i < c.size(); ++i) put(c.point(i));
+        return w;
+    }
     if (!seq)
         hif::io::throwFileError(dir, "has no " + stem +
                                          ".pcd, and is not the velodyne/ folder of "
                                          "a KITTI sequence (for its poses)");
     const std::size_t i = std::stoul(stem);
-    hif::io::Cloud c = seq->readScan(i);
-    hif::io::transform(c, seq->pose(i));
-    return c;
+    const hif::io::Cloud c = seq->readScan(i);
+    const Eigen::Isometry3d& T = seq->pose(i);
+    for (std::size_t k = 0; k < c.size(); ++k) put(T * Eigen::Vector3d(c.x[k], c.y[k], c.z[k]));
+    return w;
 }
+
+/** Prediction values that are neither static (9) nor moving (251-259): scored as static, and
+ *  reported (another tool's labels, a semantic class, 0 for "not judged"). */
+struct OtherValues
+{
+    std::size_t points = 0, files = 0;
+    std::string example;  ///< the first one seen: "<value> in <file>"
+};
 
 void printRow(const char* name, const hif::io::Scores& s)
 {
@@ -183,30 +222,53 @@ int run(Cli& cli)
     const double ego_radius = cli.ego_radius.getValue();
     if (!(ego_radius >= 0.0))
         throw std::runtime_error("--ego-radius must be >= 0, not " + std::to_string(ego_radius));
+    if ((cli.png.isSet() || cli.classes_ply.isSet()) && scan_dir.empty())
+        throw std::runtime_error("--png and --classes-ply need --scans (where the points are)");
     std::vector<std::string> names;
     for (const auto& e : fs::directory_iterator(pred_dir))
         if (e.path().extension() == ".label") names.push_back(e.path().filename().string());
     std::sort(names.begin(), names.end());
     if (names.empty()) throw std::runtime_error("no .label files in '" + pred_dir + "'");
 
-    std::optional<hif::apps::TopView> view;
+    // What the run reads, and what it writes: never an input, never replaced unasked.
     std::optional<hif::io::KittiSequence> kitti;  // for the poses of velodyne/ scans
-    std::optional<hif::io::CloudWriter> outcome_cloud;
-    if (cli.png.isSet() || cli.classes_ply.isSet())
+    hif::apps::RunFiles files;
+    files.inputFolder(label_dir, ".label", "the ground truth (--labels)");
+    files.inputFolder(pred_dir, ".label", "the predictions (--predictions)");
+    if (!scan_dir.empty())
     {
-        if (scan_dir.empty())
-            throw std::runtime_error("--png and --classes-ply need --scans (where the points are)");
-        if (cli.png.isSet()) view.emplace();
-        if (cli.classes_ply.isSet())
-            outcome_cloud.emplace(std::vector<std::string>{cli.classes_ply.getValue()},
-                                  hif::io::CloudWriter::Record::XyzRgb);
+        files.inputFolder(scan_dir, ".bin", "the scans (--scans)");
+        files.inputFolder(scan_dir, ".pcd", "the scans (--scans)");
         const fs::path seq_dir = fs::path(scan_dir).parent_path();
-        if (fs::path(scan_dir).filename() == "velodyne" && fs::exists(seq_dir / "poses.txt"))
+        if ((cli.png.isSet() || cli.classes_ply.isSet()) &&
+            fs::path(scan_dir).filename() == "velodyne" && fs::exists(seq_dir / "poses.txt"))
+        {
             kitti.emplace(seq_dir.string());
+            for (const char* f : {"poses.txt", "calib.txt", "times.txt"})
+                files.input((seq_dir / f).string(), std::string("the sequence's ") + f);
+        }
     }
+    const bool overwrite = cli.overwrite.getValue();
+    std::optional<hif::apps::StagedFile> json_file, png_file, ply_file;
+    for (auto [arg, staged, flag] : {std::tuple{&cli.json, &json_file, "--json"},
+                                     {&cli.png, &png_file, "--png"},
+                                     {&cli.classes_ply, &ply_file, "--classes-ply"}})
+        if (arg->isSet()) files.output(arg->getValue(), flag);
+    for (auto [arg, staged, flag] : {std::tuple{&cli.json, &json_file, "--json"},
+                                     {&cli.png, &png_file, "--png"},
+                                     {&cli.classes_ply, &ply_file, "--classes-ply"}})
+        if (arg->isSet()) staged->emplace(arg->getValue(), overwrite, flag);
+
+    std::optional<hif::apps::TopView> view;
+    std::optional<hif::io::CloudWriter> outcome_cloud;
+    if (png_file) view.emplace();
+    if (ply_file)
+        outcome_cloud.emplace(std::vector<std::string>{ply_file->path()},
+                              hif::io::CloudWriter::Record::XyzRgb);
     hif::io::Breakdown total;
     hif::io::Scores with_ego;  ///< the DynamicMap benchmark's way (needs ranges)
     std::size_t without_truth = 0, scored = 0;
+    OtherValues other;
     nlohmann::ordered_json scans = nlohmann::ordered_json::array();
     if (!cli.quiet.getValue())
         std::printf("%-14s %9s %9s %7s %7s %7s %7s\n", "scan", "static", "dynamic", "SA", "DA",
@@ -221,12 +283,24 @@ int run(Cli& cli)
         }
         ++scored;
         const std::string stem = fs::path(name).stem().string();
+        const std::string pred_file = (fs::path(pred_dir) / name).string();
         const auto truth = hif::io::readLabels(truth_file);
-        const auto pred = hif::io::readLabels((fs::path(pred_dir) / name).string());
+        const auto pred = hif::io::readLabels(pred_file);
         if (truth.size() != pred.size())
-            throw std::runtime_error("'" + (fs::path(pred_dir) / name).string() + "' has " +
-                                     std::to_string(pred.size()) + " points, '" + truth_file +
-                                     "' has " + std::to_string(truth.size()));
+            throw std::runtime_error("'" + pred_file + "' has " + std::to_string(pred.size()) +
+                                     " points, '" + truth_file + "' has " +
+                                     std::to_string(truth.size()));
+        std::size_t odd = 0;
+        for (const uint32_t p : pred)
+        {
+            const uint32_t c = p & 0xffffu;
+            if (c == hif::io::kLabelStatic || hif::io::isPredictedMoving(c)) continue;
+            if (other.example.empty())
+                other.example = std::to_string(c) + " in '" + pred_file + "'";
+            ++odd;
+        }
+        other.points += odd;
+        other.files += odd > 0;
         const std::vector<double> range = ranges(scan_dir, stem, truth.size());
         hif::io::Breakdown s;
         for (std::size_t i = 0; i < truth.size(); ++i)
@@ -239,7 +313,7 @@ int run(Cli& cli)
         if (view || outcome_cloud)
         {
             using V = hif::apps::TopView;
-            const hif::io::Cloud w = worldPoints(scan_dir, stem, kitti);
+            const WorldPoints w = worldPoints(scan_dir, stem, kitti);
             if (w.size() != truth.size())
                 hif::io::throwFileError(scan_dir, stem + " does not hold the " +
                                                       std::to_string(truth.size()) +
@@ -252,7 +326,7 @@ int run(Cli& cli)
                 const V::Outcome o = !judged  ? (removed ? V::kRemoved : V::kKept)
                                      : moving ? (removed ? V::kRemoved : V::kMissedMoving)
                                               : (removed ? V::kWronglyRemoved : V::kKept);
-                if (view) view->add(w.x[i], w.y[i], w.z[i], o);
+                if (view) view->add(w.x[i], w.y[i], static_cast<float>(w.z[i]), o);
                 if (outcome_cloud && std::isfinite(w.x[i]) && std::isfinite(w.y[i]) &&
                     std::isfinite(w.z[i]))
                     outcome_cloud->add(w.x[i], w.y[i], w.z[i], V::kRgb[o][0], V::kRgb[o][1],
@@ -269,9 +343,31 @@ int run(Cli& cli)
         throw std::runtime_error("none of the " + std::to_string(names.size()) +
                                  " predictions in '" + pred_dir + "' has a label file in '" +
                                  label_dir + "'");
+    // Ground truth that no prediction scores: a scan the method left out is not a scan it got
+    // right.
+    std::size_t without_prediction = 0;
+    std::string first_missing;
+    for (const auto& e : fs::directory_iterator(label_dir))
+        if (e.path().extension() == ".label" &&
+            !fs::exists(fs::path(pred_dir) / e.path().filename()))
+        {
+            ++without_prediction;
+            const std::string n = e.path().filename().string();
+            if (first_missing.empty() || n < first_missing) first_missing = n;
+        }
     if (without_truth > 0)
         std::printf("[hif-eval] %zu of %zu predictions have no label file in '%s': not scored\n",
                     without_truth, names.size(), label_dir.c_str());
+    if (without_prediction > 0)
+        std::printf(
+            "[hif-eval] %zu label files in '%s' have no prediction in '%s' (the first: "
+            "%s): those scans are not scored\n",
+            without_prediction, label_dir.c_str(), pred_dir.c_str(), first_missing.c_str());
+    if (other.points > 0)
+        std::printf(
+            "[hif-eval] warning: %zu predicted points in %zu files are neither 9 (static) "
+            "nor 251-259 (moving), e.g. %s: they are scored as static\n",
+            other.points, other.files, other.example.c_str());
 
     nlohmann::ordered_json classes, bands;
     std::printf("%-22s %9s %9s %7s\n", "moving class", "dynamic", "removed", "DA");
@@ -310,24 +406,38 @@ int run(Cli& cli)
     if (outcome_cloud)
     {
         outcome_cloud->close();
-        std::printf("[hif-eval] wrote %s (%zu points)\n", cli.classes_ply.getValue().c_str(),
-                    outcome_cloud->count());
+        ply_file->commit();
+        std::printf("[hif-eval] wrote %s (%zu points%s)\n", cli.classes_ply.getValue().c_str(),
+                    outcome_cloud->count(),
+                    outcome_cloud->doubleCoordinates() ? ", float64 coordinates" : "");
     }
     if (view)
     {
         char title[160];
         std::snprintf(title, sizeof title, "hif-eval: %zu scans, SA %.2f  DA %.2f  AA %.2f", scored,
                       total.total.sa(), total.total.da(), total.total.aa());
-        const auto [w, h] = view->write(cli.png.getValue(), title, true);
-        std::printf("[hif-eval] wrote %s (%d x %d)\n", cli.png.getValue().c_str(), w, h);
+        if (view->empty())
+            throw std::runtime_error("--png '" + cli.png.getValue() +
+                                     "': the scans have no point to draw");
+        const auto pic = view->write(png_file->path(), title, true);
+        png_file->commit();
+        std::printf("[hif-eval] wrote %s (%d x %d)\n", cli.png.getValue().c_str(), pic.width,
+                    pic.height);
+        if (pic.points_outside > 0)
+            std::printf(
+                "[hif-eval] %s shows the main area: %zu of %zu points lie apart from it "
+                "(more than 100 m of empty ground away) and are not drawn\n",
+                cli.png.getValue().c_str(), pic.points_outside, pic.points);
     }
-    if (cli.json.isSet())
+    if (json_file)
     {
         nlohmann::ordered_json j;
         j["labels"] = label_dir;
         j["predictions"] = pred_dir;
         j["scans_scored"] = scored;
         j["predictions_without_labels"] = without_truth;
+        j["labels_without_predictions"] = without_prediction;
+        j["predicted_points_neither_static_nor_moving"] = other.points;
         j["total"] = toJson(total.total);
         j["per_moving_class"] = classes.is_null() ? nlohmann::ordered_json::object() : classes;
         if (total.has_ranges)
@@ -340,10 +450,15 @@ int run(Cli& cli)
             }
         }
         j["per_scan"] = scans;
-        std::ofstream f(cli.json.getValue());
-        f << std::setw(2) << j << "\n";
-        if (!f)
-            throw std::runtime_error("Error writing to target file '" + cli.json.getValue() + "'");
+        {
+            std::ofstream f(json_file->path());
+            f << std::setw(2) << j << "\n";
+            f.close();
+            if (!f)
+                throw std::runtime_error("--json '" + cli.json.getValue() +
+                                         "' could not be written (disk full?)");
+        }
+        json_file->commit();
     }
     return 0;
 }

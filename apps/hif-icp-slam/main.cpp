@@ -22,7 +22,8 @@
 #include "VoxelMap.h"
 #include "hif/CHeightIntervalMap.h"
 #include "hif/apps/Cli.h"
-#include "hif/apps/ShippedConfig.h"
+#include "hif/apps/Config.h"
+#include "hif/apps/RunFiles.h"
 #include "hif/apps/Staged.h"
 #include "hif/io/CloudFiles.h"
 #include "hif/io/KittiSequence.h"
@@ -35,6 +36,8 @@ using hif::apps::msSince;
 namespace
 {
 const std::string kTag = "[hif-icp-slam]";
+/** Fewer points than this (after thinning) leave ICP's 6 degrees of freedom undetermined. */
+constexpr std::size_t kMinIcpPoints = 3;
 
 struct Cli
 {
@@ -117,12 +120,23 @@ int run(Cli& cli)
     const std::string input = cli.input.getValue();
     const std::string out_dir = hif::apps::cleanDir(cli.output.getValue());
     const bool use_hif = !cli.no_hif.getValue();
-    hif::apps::StagedFolder staged(
-        out_dir, {"poses_kitti.txt", "slam_map.ply", "map.hifmap", "summary.json"},
-        cli.overwrite.getValue(), "--overwrite");
     const std::string cfg_file =
         cli.config.isSet() ? cli.config.getValue() : hif::apps::shippedConfig("icp-slam-3d.ini");
-    if (!fs::exists(cfg_file)) throw std::runtime_error("config '" + cfg_file + "' not found");
+    hif::apps::checkConfigFile(cfg_file);
+    std::string labels_dir = cli.labels.getValue();
+    if (labels_dir.empty() && fs::is_directory(fs::path(input) / "labels"))
+        labels_dir = (fs::path(input) / "labels").string();
+    if (!labels_dir.empty() && !fs::is_directory(labels_dir))
+        throw std::runtime_error("labels folder '" + labels_dir + "' is not a folder");
+    // No output is an input; earlier results are replaced only when asked.
+    const std::vector<std::string> names{"poses_kitti.txt", "slam_map.ply", "map.hifmap",
+                                         "summary.json"};
+    hif::apps::RunFiles files;
+    hif::apps::describeInputs(input, files);
+    files.input(cfg_file, "the config");
+    if (!labels_dir.empty()) files.inputFolder(labels_dir, ".label", "the labels");
+    for (const std::string& n : names) files.output(out_dir + "/" + n, "the " + n + " of -o");
+    hif::apps::StagedFolder staged(out_dir, names, cli.overwrite.getValue(), "--overwrite");
     const mrpt::config::CConfigFile cfg(cfg_file);
     const Settings set = readSettings(cfg, cfg_file);
     mrpt::slam::CICP icp;
@@ -133,6 +147,7 @@ int run(Cli& cli)
     if (use_hif)
     {
         mrpt::maps::TSetOfMetricMapInitializers inits;
+        hif::apps::checkMapCounts(cfg, "map", cfg_file);
         inits.loadFromConfigFile(cfg, "map");
         maps.setListOfMaps(inits);
         hif_map = maps.mapByClass<hif::CHeightIntervalMap>();
@@ -141,12 +156,6 @@ int run(Cli& cli)
                                      "', section [map] defines no CHeightIntervalMap");
         hif_map->insertionOptions.online_window = true;
     }
-    std::string labels_dir = cli.labels.getValue();
-    if (labels_dir.empty() && fs::is_directory(fs::path(input) / "labels"))
-        labels_dir = (fs::path(input) / "labels").string();
-    if (!labels_dir.empty() && !fs::is_directory(labels_dir))
-        throw std::runtime_error("labels folder '" + labels_dir + "' is not a folder");
-
     auto source = hif::apps::openScanSource(input, {}, /*poses_required=*/false);
     std::cout << kTag << " input  : " << input << "\n"
               << kTag << " config : " << cfg_file << (use_hif ? "" : " (--no-hif)") << "\n"
@@ -161,6 +170,7 @@ int run(Cli& cli)
     std::vector<uint8_t> dyn;
     MovingInMap moving;
     std::size_t points_in = 0, points_removed = 0, icp_iterations = 0;
+    std::size_t not_aligned = 0;  ///< scans whose pose is the guess: too few points for ICP
     hif::apps::Progress progress(kTag, "aligning", source->knownSize(), !cli.quiet.getValue());
     hif::apps::Scan scan;
     for (std::size_t k = 0; source->next(scan); ++k)
@@ -180,13 +190,22 @@ int run(Cli& cli)
                 k >= 2 ? poses[k - 1] + (poses[k - 1] - poses[k - 2]) : poses[k - 1];
             const auto thin =
                 hif::slam::thinToVoxels(xs, ys, zs, set.scan_voxel, set.min_range, set.max_range);
-            const auto t_icp = Clock::now();
-            mrpt::slam::CICP::TReturnInfo info;
-            const auto pdf = icp.Align3DPDF(&local.points(), &thin,
-                                            mrpt::poses::CPose3DPDFGaussian(guess), info);
-            pose = pdf->getMeanVal();
-            icp_ms.push_back(msSince(t_icp));
-            icp_iterations += info.nIterations;
+            pose = guess;
+            if (thin.size() < kMinIcpPoints || local.size() < kMinIcpPoints)
+                ++not_aligned;  // 6 degrees of freedom need 3 points at least
+            else
+            {
+                const auto t_icp = Clock::now();
+                mrpt::slam::CICP::TReturnInfo info;
+                const auto pdf = icp.Align3DPDF(&local.points(), &thin,
+                                                mrpt::poses::CPose3DPDFGaussian(guess), info);
+                icp_ms.push_back(msSince(t_icp));
+                icp_iterations += info.nIterations;
+                if (info.goodness > 0)
+                    pose = pdf->getMeanVal();
+                else
+                    ++not_aligned;  // nothing matched: the guess stays
+            }
         }
         poses.push_back(pose);
         if (scan.has_pose)
@@ -220,7 +239,7 @@ int run(Cli& cli)
             if (!std::isfinite(xs[i]) || !std::isfinite(ys[i]) || !std::isfinite(zs[i])) continue;
             double gx, gy, gz;
             pose.composePoint(xs[i], ys[i], zs[i], gx, gy, gz);
-            cloud.add(float(gx), float(gy), float(gz), 0.0f);
+            cloud.add(gx, gy, gz, 0.0f);
         }
         points_in += xs.size();
         local.add(hif::slam::thinToVoxels(sx, sy, sz, set.map_voxel, set.min_range, set.max_range),
@@ -253,6 +272,13 @@ int run(Cli& cli)
     }
     progress.finish();
     if (poses.empty()) throw std::runtime_error("input '" + input + "' holds no scans");
+    if (poses.size() > 1 && not_aligned == poses.size() - 1)
+        throw std::runtime_error(
+            "ICP could not align any of the " + std::to_string(not_aligned) +
+            " scans after the first (fewer than " + std::to_string(kMinIcpPoints) +
+            " points each after thinning to scan_voxel within min_range..max_range, or nothing "
+            "matched): the poses would be guesses only; check the input's points and [SLAM] of '" +
+            cfg_file + "'");
 
     cloud.close();
     hif::slam::writeKittiPoses(staged.path() + "/poses_kitti.txt", poses);
@@ -276,6 +302,7 @@ int run(Cli& cli)
     j["scan_ms_max"] = per_scan.max;
     j["icp_ms_median"] = icp_t.median;
     j["hif_ms_median"] = hif_t.median;
+    j["scans_not_aligned"] = not_aligned;
     j["icp_iterations_mean"] =
         icp_ms.empty() ? 0.0 : double(icp_iterations) / double(icp_ms.size());
     j["trajectory_rmse_m"] = rmse ? nlohmann::json(rmse_m) : nlohmann::json(nullptr);
@@ -296,8 +323,15 @@ int run(Cli& cli)
               << ", ms per scan: median " << per_scan.median << " (ICP " << icp_t.median
               << (use_hif ? ", HIF " + std::to_string(hif_t.median) : std::string()) << "), p90 "
               << per_scan.p90 << "\n";
+    if (not_aligned > 0)
+        std::cout << kTag << " warning: " << not_aligned << " of " << poses.size() - 1
+                  << " scans could not be aligned (fewer than " << kMinIcpPoints
+                  << " points for ICP, or nothing matched): their poses are the constant-velocity "
+                     "guess\n";
     if (rmse)
         std::cout << kTag << " trajectory RMSE against the input's poses: " << rmse_m << " m\n";
+    else if (poses.size() < 2)
+        std::cout << kTag << " no trajectory error: the input holds one scan\n";
     else
         std::cout << kTag << " no trajectory error: the input has no pose for every scan\n";
     if (moving.scans_labelled > 0)

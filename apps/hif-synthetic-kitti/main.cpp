@@ -20,6 +20,7 @@
 
 #include "Scene.h"
 #include "hif/apps/Cli.h"
+#include "hif/apps/Staged.h"
 #include "hif/io/KittiSequence.h"
 #include "hif/io/Labels.h"
 
@@ -85,14 +86,13 @@ int run(Cli& cli)
     if (cli.groups.getValue() < 0 || cli.groups.getValue() > 100)
         throw std::runtime_error("--groups " + std::to_string(cli.groups.getValue()) +
                                  " is not in [0, 100]");
-    hif::apps::refuseToOverwrite(dir + "/velodyne", cli.overwrite.getValue(), "--overwrite");
-    if (cli.overwrite.getValue())
-    {
-        fs::remove_all(dir + "/velodyne");
-        fs::remove_all(dir + "/labels");
-    }
-    hif::apps::makeDirs(dir + "/velodyne");
-    hif::apps::makeDirs(dir + "/labels");
+    // Written aside and put in place when complete: a stopped run leaves no half sequence.
+    hif::apps::StagedFolder staged(dir,
+                                   {"velodyne", "labels", "poses.txt", "calib.txt", "times.txt"},
+                                   cli.overwrite.getValue(), "--overwrite");
+    const std::string out = staged.path();
+    hif::apps::makeDirs(out + "/velodyne");
+    hif::apps::makeDirs(out + "/labels");
 
     std::mt19937 rng(seed);
     const double length = ego_speed * kScanPeriod * double(n);
@@ -119,7 +119,7 @@ int run(Cli& cli)
             }
         return s;
     };
-    std::ofstream calib(dir + "/calib.txt"), poses(dir + "/poses.txt"), times(dir + "/times.txt");
+    std::ofstream calib(out + "/calib.txt"), poses(out + "/poses.txt"), times(out + "/times.txt");
     calib << "Tr: " << row34(Tr) << "\n";
 
     constexpr int kBeams = 64, kColumns = 1024;
@@ -160,19 +160,24 @@ int run(Cli& cli)
         }
         total_points += labels.size();
         const std::string name = hif::io::frameName(i);
-        std::ofstream bin(dir + "/velodyne/" + name + ".bin", std::ios::binary);
+        std::ofstream bin(out + "/velodyne/" + name + ".bin", std::ios::binary);
         bin.write(reinterpret_cast<const char*>(pts.data()),
                   static_cast<std::streamsize>(pts.size() * sizeof(float)));
+        bin.close();
         if (!bin)
-            throw std::runtime_error("Error writing to target file '" + dir + "/velodyne/" + name +
-                                     ".bin'");
-        hif::io::writeLabels(dir + "/labels/" + name + ".label", labels);
+            throw std::runtime_error("'" + dir + "/velodyne/" + name +
+                                     ".bin' could not be written (disk full?)");
+        hif::io::writeLabels(out + "/labels/" + name + ".label", labels);
         progress.update(i + 1);
     }
     progress.finish();
+    calib.close();
+    poses.close();
+    times.close();
     if (!calib || !poses || !times)
-        throw std::runtime_error("Error writing calib.txt, poses.txt or times.txt in '" + dir +
-                                 "'");
+        throw std::runtime_error("calib.txt, poses.txt or times.txt of '" + dir +
+                                 "' could not be written (disk full?)");
+    staged.commit();
     std::cout << tag << " wrote " << n << " scans, " << total_points << " points (" << moving_points
               << " on moving objects) to '" << dir << "'\n";
     return 0;

@@ -16,12 +16,15 @@
 #include <mrpt/poses/CPose3D.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 
 #include "hif/apps/Cli.h"
 #include "hif/apps/FrameComment.h"
+#include "hif/apps/RunFiles.h"
 #include "hif/apps/Staged.h"
 #include "hif/io/CloudFiles.h"
 #include "hif/io/KittiSequence.h"
@@ -70,16 +73,27 @@ struct Cli
         "that benchmark's methods (DUFOMap, OctoMap, ...) and hif-clean read",
         cmd};
     TCLAP::SwitchArg overwrite{"", "overwrite", "Replace the output if it exists", cmd};
+    TCLAP::SwitchArg quiet{"q", "quiet", "No progress bar", cmd};
 };
+
+/** The error for a rawlog that could not be written: what the system said (disk full, file too
+ *  large, ...), not MRPT's "Cannot write bytes". */
+[[noreturn]] void throwWriteError(const std::string& file, int err)
+{
+    throw std::runtime_error("'" + file + "' could not be written (disk full?): " +
+                             (err != 0 ? std::strerror(err) : "write failed") +
+                             "; nothing was left behind");
+}
 
 /** The scans first..last as <dir>/pcd/NNNNNN.pcd, points in the world frame. */
 void writeDynamicMap(const hif::io::KittiSequence& seq, std::size_t first, std::size_t last,
-                     const std::string& dir, bool overwrite, const std::string& tag)
+                     const std::string& dir, bool overwrite, const std::string& tag,
+                     bool show_progress)
 {
     hif::apps::StagedFolder staged(hif::apps::cleanDir(dir), {"pcd"}, overwrite, "--overwrite");
     const std::string pcd_dir = staged.path() + "/pcd";
     hif::apps::makeDirs(pcd_dir);
-    hif::apps::Progress progress(tag, "converting", last - first + 1);
+    hif::apps::Progress progress(tag, "converting", last - first + 1, show_progress);
     for (std::size_t i = first; i <= last; ++i)
     {
         hif::io::Cloud scan = seq.readScan(i);
@@ -93,6 +107,16 @@ void writeDynamicMap(const hif::io::KittiSequence& seq, std::size_t first, std::
     }
     progress.finish();
     staged.commit();
+}
+
+/** The files a conversion of `seq` reads. */
+void describeSequence(const hif::io::KittiSequence& seq, hif::apps::RunFiles& files)
+{
+    const std::filesystem::path d(seq.dir());
+    files.inputFolder((d / "velodyne").string(), ".bin", "the scans of -i");
+    files.inputFolder((d / "labels").string(), ".label", "the labels of -i");
+    for (const char* f : {"poses.txt", "calib.txt", "times.txt"})
+        files.input((d / f).string(), std::string("the ") + f + " of -i");
 }
 
 int run(Cli& cli)
@@ -124,12 +148,20 @@ int run(Cli& cli)
                 "--dynamicmap");
         std::cout << tag << " sequence '" << seq.dir() << "': scans " << first << ".." << last
                   << " of " << n << " into the DynamicMap layout '" << out_file << "/pcd'\n";
-        writeDynamicMap(seq, first, last, out_file, cli.overwrite.getValue(), tag);
+        hif::apps::RunFiles files;
+        describeSequence(seq, files);
+        files.output(hif::apps::cleanDir(out_file) + "/pcd", "the pcd/ of -o", true);
+        writeDynamicMap(seq, first, last, out_file, cli.overwrite.getValue(), tag,
+                        !cli.quiet.getValue());
         std::cout << tag << " done: " << (last - first + 1) << " scans\n";
         return 0;
     }
-    // Written aside and renamed when complete: a failed conversion leaves no partial rawlog.
-    hif::apps::StagedFile staged(out_file, cli.overwrite.getValue(), "--overwrite");
+    // Never over an input; written aside and renamed when complete: a failed conversion leaves
+    // no partial rawlog.
+    hif::apps::RunFiles files;
+    describeSequence(seq, files);
+    files.output(out_file, "-o");
+    hif::apps::StagedFile staged(out_file, cli.overwrite.getValue(), "-o");
 
     // Check every scan (and label file) before writing anything.
     std::size_t total_points = 0, labelled = 0;
@@ -172,7 +204,7 @@ int run(Cli& cli)
     }
     auto arch = mrpt::serialization::archiveFrom(*stream);
 
-    hif::apps::Progress progress(tag, "converting", last - first + 1);
+    hif::apps::Progress progress(tag, "converting", last - first + 1, !cli.quiet.getValue());
     for (std::size_t i = first; i <= last; ++i)
     {
         // KITTI times are seconds from the start of the sequence.
@@ -182,13 +214,11 @@ int run(Cli& cli)
         frame->sensorLabel = "KITTI_FRAME";
         frame->timestamp = stamp;
         frame->text = hif::apps::kittiFrameComment(i);
-        arch << *frame;
         auto pose_obs = mrpt::obs::CObservationRobotPose::Create();
         pose_obs->sensorLabel = "GROUND_TRUTH";
         pose_obs->timestamp = stamp;
         pose_obs->pose.mean = mrpt::poses::CPose3D::FromHomogeneousMatrix(seq.pose(i).matrix());
         pose_obs->pose.cov.setZero();
-        arch << *pose_obs;
 
         auto scan = mrpt::obs::CObservationPointCloud::Create();
         scan->sensorLabel = "LIDAR";
@@ -208,11 +238,28 @@ int run(Cli& cli)
                 throw std::runtime_error("error reading '" + seq.scanFile(i) + "'");
             scan->pointcloud = cloud;
         }
-        arch << *scan;
+        errno = 0;
+        try
+        {
+            arch << *frame << *pose_obs << *scan;
+        }
+        catch (const std::exception&)
+        {
+            throwWriteError(out_file, errno);
+        }
         progress.update(i - first + 1);
     }
     progress.finish();
-    stream.reset();  // flushed and closed
+    errno = 0;
+    try
+    {
+        stream.reset();  // flushed and closed
+    }
+    catch (const std::exception&)
+    {
+        throwWriteError(out_file, errno);
+    }
+    if (errno == ENOSPC || errno == EFBIG) throwWriteError(out_file, errno);  // the last flush
     staged.commit();
     std::cout << tag << " done: " << (last - first + 1) << " scans\n";
     return 0;

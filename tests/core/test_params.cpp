@@ -63,6 +63,20 @@ TEST(Params, EachBadFieldIsNamed)
     expectRejected<G>([](G& g) { g.origin_y = std::numeric_limits<double>::infinity(); },
                       "origin_y");
     expectRejected<G>([](G& g) { g.height_resolution = 0; }, "height_resolution");
+    // An origin whose own pillar index does not fit in int32 would leave every point outside
+    // the grid; UTM-sized ones (millions of metres) are fine.
+    expectRejected<G>([](G& g) { g.origin_x = 3e9; }, "origin_x");
+    expectRejected<G>(
+        [](G& g)
+        {
+            g.pillar_size = 0.001;
+            g.origin_y = -5.8e6;
+        },
+        "origin_y");
+    G utm;
+    utm.origin_x = 630000;
+    utm.origin_y = 5.8e6;
+    EXPECT_NO_THROW(utm.validate());
     expectRejected<Params>([](Params& p) { p.merge_gap = -0.1; }, "merge_gap");
     expectRejected<Params>([](Params& p) { p.interval_padding = -0.1; }, "interval_padding");
     expectRejected<Params>([](Params& p) { p.alpha = 0.5; }, "alpha");

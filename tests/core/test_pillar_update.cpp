@@ -310,6 +310,7 @@ TEST(PillarGrid, NonFinitePointsAreCountedNotUsed)
     const InsertStats st = grid.insertScan({x.data(), y.data(), z.data(), 3});
     EXPECT_EQ(st.points_used, 1u);
     EXPECT_EQ(st.points_invalid, 2u);
+    EXPECT_EQ(st.points_outside_grid, 1u);  // 1e30: a finite point beyond the index range
     std::vector<uint8_t> dyn;
     const ClassifyStats cs = grid.classify({x.data(), y.data(), z.data(), 3}, dyn);
     EXPECT_EQ(cs.invalid_points, 1u);  // NaN; 1e30 is finite, lies in unknown space

@@ -126,7 +126,9 @@ void makeDirs(const std::string& dir)
 
 void refuseToOverwrite(const std::string& file, bool overwrite, const std::string& flag)
 {
-    if (!overwrite && std::filesystem::exists(file))
+    std::error_code ec;
+    if (!overwrite &&
+        std::filesystem::symlink_status(file, ec).type() != std::filesystem::file_type::not_found)
         throw std::runtime_error("'" + file + "' already exists; pass " + flag + " to replace it");
 }
 

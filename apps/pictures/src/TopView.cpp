@@ -1,17 +1,20 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file   TopView.cpp
- * @brief  The bird's-eye picture: a growing grid of cells, drawn with OpenCV.
+ * @brief  The bird's-eye picture: tiles of cells where points fell, the main area, drawn with
+ *         OpenCV.
  */
 #include "hif/apps/TopView.h"
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
+#include <unordered_map>
 
 namespace hif::apps
 {
@@ -40,7 +43,50 @@ double niceLength(double span)
         if (m * p <= target) return m * p;
     return p;
 }
+
+uint64_t packBlock(int64_t bx, int64_t by)
+{
+    return (static_cast<uint64_t>(static_cast<uint32_t>(bx)) << 32) |
+           static_cast<uint64_t>(static_cast<uint32_t>(by));
+}
 }  // namespace
+
+std::vector<bool> mainArea(const std::vector<WeightedBlock>& blocks, int64_t reach)
+{
+    std::unordered_map<uint64_t, std::size_t> at;
+    at.reserve(blocks.size());
+    for (std::size_t k = 0; k < blocks.size(); ++k)
+        at.emplace(packBlock(blocks[k].bx, blocks[k].by), k);
+    std::vector<int> group(blocks.size(), -1);
+    std::vector<std::size_t> weight;
+    std::deque<std::size_t> queue;
+    for (std::size_t k = 0; k < blocks.size(); ++k)
+    {
+        if (group[k] >= 0) continue;
+        const int g = static_cast<int>(weight.size());
+        weight.push_back(0);
+        group[k] = g;
+        queue.push_back(k);
+        while (!queue.empty())
+        {
+            const WeightedBlock& b = blocks[queue.front()];
+            queue.pop_front();
+            weight[static_cast<std::size_t>(g)] += b.weight;
+            for (int64_t dy = -reach; dy <= reach; ++dy)
+                for (int64_t dx = -reach; dx <= reach; ++dx)
+                {
+                    const auto it = at.find(packBlock(b.bx + dx, b.by + dy));
+                    if (it == at.end() || group[it->second] >= 0) continue;
+                    group[it->second] = g;
+                    queue.push_back(it->second);
+                }
+        }
+    }
+    const auto main = std::max_element(weight.begin(), weight.end()) - weight.begin();
+    std::vector<bool> in(blocks.size());
+    for (std::size_t k = 0; k < blocks.size(); ++k) in[k] = group[k] == main;
+    return in;
+}
 
 TopView::TopView(double resolution, std::size_t max_cells)
     : res_(resolution), inv_res_(1.0 / resolution), max_cells_(max_cells)
@@ -48,102 +94,132 @@ TopView::TopView(double resolution, std::size_t max_cells)
     if (!(resolution > 0)) throw std::invalid_argument("TopView: resolution must be > 0");
 }
 
-void TopView::rebuild(double x0, double y0, std::size_t cols, std::size_t rows, double res)
-{
-    std::vector<float> top(cols * rows, kNone);
-    std::vector<uint8_t> marks(cols * rows, 0);
-    for (std::size_t r = 0; r < rows_; ++r)
-        for (std::size_t c = 0; c < cols_; ++c)
-        {
-            const std::size_t i = r * cols_ + c;
-            if (std::isnan(top_[i]) && marks_[i] == 0) continue;
-            const double x = x0_ + (double(c) + 0.5) * res_, y = y0_ + (double(r) + 0.5) * res_;
-            const auto nc = static_cast<std::size_t>((x - x0) / res);
-            const auto nr = static_cast<std::size_t>((y - y0) / res);
-            const std::size_t j = nr * cols + nc;
-            if (!std::isnan(top_[i]) && !(top_[i] <= top[j])) top[j] = top_[i];
-            marks[j] |= marks_[i];
-        }
-    top_ = std::move(top);
-    marks_ = std::move(marks);
-    x0_ = x0;
-    y0_ = y0;
-    cols_ = cols;
-    rows_ = rows;
-    res_ = res;
-    inv_res_ = 1.0 / res;
-    x1_ = x0_ + double(cols_) * res_;
-    y1_ = y0_ + double(rows_) * res_;
-}
-
-void TopView::resizeTo(double x0, double y0, double x1, double y1)
-{
-    double res = res_;
-    while (std::ceil((x1 - x0) / res) * std::ceil((y1 - y0) / res) > double(max_cells_)) res *= 2;
-    // Cell edges stay on multiples of the resolution.
-    x0 = std::floor(x0 / res) * res;
-    y0 = std::floor(y0 / res) * res;
-    rebuild(x0, y0, static_cast<std::size_t>(std::ceil((x1 - x0) / res)),
-            static_cast<std::size_t>(std::ceil((y1 - y0) / res)), res);
-}
-
 void TopView::cover(double x0, double y0, double x1, double y1, int pixels)
 {
-    if (!(x0 < x1 && y0 < y1)) return;
-    if (cols_ == 0 && pixels > 0)
-    {
-        res_ = std::max(0.05, std::ceil(std::max(x1 - x0, y1 - y0) / pixels * 100.0) / 100.0);
-        inv_res_ = 1.0 / res_;
-    }
-    else if (cols_ > 0)
-    {
-        x0 = std::min(x0, x0_);
-        y0 = std::min(y0, y0_);
-        x1 = std::max(x1, x1_);
-        y1 = std::max(y1, y1_);
-    }
-    resizeTo(x0, y0, x1, y1);
+    if (!(x0 < x1 && y0 < y1) || pixels <= 0 || !tiles_.empty() || far_ > 0) return;
+    res_ = std::max(0.05, std::ceil(std::max(x1 - x0, y1 - y0) / pixels * 100.0) / 100.0);
+    inv_res_ = 1.0 / res_;
 }
 
-void TopView::grow(float x, float y)
+TopView::Tile* TopView::findOrAdd(int64_t tx, int64_t ty)
 {
-    if (!std::isfinite(x) || !std::isfinite(y)) return;
-    // The new area holds the old one and the point, with room to spare on the side it grew,
-    // so that growing is rare.
-    double nx0 = x0_, ny0 = y0_, nx1 = x1_, ny1 = y1_;
-    if (cols_ == 0)
+    const uint64_t key = packBlock(tx, ty);
+    const auto it = index_.find(key);
+    if (it != index_.end()) return last_ = &tiles_[it->second];
+    if ((tiles_.size() + 1) * kTileCells > max_cells_ && !tiles_.empty())
     {
-        nx0 = x - 32;
-        ny0 = y - 32;
-        nx1 = x + 32;
-        ny1 = y + 32;
+        coarsen();
+        return nullptr;  // the caller's cell is another one now
     }
-    const double w = std::max(nx1 - nx0, 64.0), h = std::max(ny1 - ny0, 64.0);
-    if (x < nx0) nx0 = std::min<double>(x, nx0 - w / 2);
-    if (x >= nx1) nx1 = std::max<double>(x + res_, nx1 + w / 2);
-    if (y < ny0) ny0 = std::min<double>(y, ny0 - h / 2);
-    if (y >= ny1) ny1 = std::max<double>(y + res_, ny1 + h / 2);
-    resizeTo(nx0, ny0, nx1, ny1);
+    Tile t;
+    t.tx = tx;
+    t.ty = ty;
+    t.top.assign(kTileCells, kNone);
+    t.marks.assign(kTileCells, 0);
+    index_.emplace(key, tiles_.size());
+    tiles_.push_back(std::move(t));
+    return last_ = &tiles_.back();
 }
 
-std::pair<int, int> TopView::write(const std::string& file, const std::string& title,
-                                   bool with_truth, int min_width) const
+void TopView::coarsen()
 {
-    if (!any_) throw std::runtime_error("nothing to draw in '" + file + "': no point was added");
-    // The cells that hold something.
-    std::size_t c0 = cols_, c1 = 0, r0 = rows_, r1 = 0;
+    std::vector<Tile> old = std::move(tiles_);
+    tiles_.clear();
+    index_.clear();
+    last_ = nullptr;
+    res_ *= 2;
+    inv_res_ = 1.0 / res_;
+    const std::size_t max_cells = max_cells_;
+    max_cells_ = std::numeric_limits<std::size_t>::max();  // the merge never coarsens again
+    for (const Tile& o : old)
+    {
+        // Cell (cx, cy) becomes (cx >> 1, cy >> 1); a tile's cells all land in one new tile.
+        Tile& t = *findOrAdd(o.tx >> 1, o.ty >> 1);
+        t.points += o.points;
+        for (int64_t ly = 0; ly < kTileSide; ++ly)
+            for (int64_t lx = 0; lx < kTileSide; ++lx)
+            {
+                const auto i = static_cast<std::size_t>((ly << kTileBits) | lx);
+                if (std::isnan(o.top[i]) && o.marks[i] == 0) continue;
+                const int64_t cx = ((o.tx << kTileBits) | lx) >> 1;
+                const int64_t cy = ((o.ty << kTileBits) | ly) >> 1;
+                const auto j =
+                    static_cast<std::size_t>(((cy & kTileMask) << kTileBits) | (cx & kTileMask));
+                if (!std::isnan(o.top[i]) && !(o.top[i] <= t.top[j])) t.top[j] = o.top[i];
+                t.marks[j] |= o.marks[i];
+            }
+    }
+    max_cells_ = max_cells;
+    if (tiles_.size() * kTileCells > max_cells_) coarsen();
+}
+
+TopView::Picture TopView::write(const std::string& file, const std::string& title, bool with_truth,
+                                int min_width) const
+{
+    Picture pic;
+    pic.points = far_;
+    for (const Tile& t : tiles_) pic.points += t.points;
+    if (tiles_.empty())
+        throw std::runtime_error("nothing to draw in '" + file + "': no point was added");
+
+    // The main area: tiles linked within kAreaLinkMetres of one another, the heaviest group.
+    std::vector<WeightedBlock> blocks;
+    for (const Tile& t : tiles_) blocks.push_back({t.tx, t.ty, t.points});
+    const double tile_m = res_ * double(kTileSide);
+    const auto reach = static_cast<int64_t>(std::ceil(kAreaLinkMetres / tile_m));
+    const std::vector<bool> in = mainArea(blocks, reach);
+    pic.points_outside = far_;
+    for (std::size_t k = 0; k < tiles_.size(); ++k)
+        if (!in[k]) pic.points_outside += tiles_[k].points;
+
+    // The cells that hold something, in the main area.
+    int64_t c0 = std::numeric_limits<int64_t>::max(), c1 = std::numeric_limits<int64_t>::min();
+    int64_t r0 = c0, r1 = c1;
+    for (std::size_t k = 0; k < tiles_.size(); ++k)
+    {
+        if (!in[k]) continue;
+        const Tile& t = tiles_[k];
+        for (int64_t ly = 0; ly < kTileSide; ++ly)
+            for (int64_t lx = 0; lx < kTileSide; ++lx)
+            {
+                const auto i = static_cast<std::size_t>((ly << kTileBits) | lx);
+                if (std::isnan(t.top[i]) && t.marks[i] == 0) continue;
+                const int64_t cx = (t.tx << kTileBits) | lx, cy = (t.ty << kTileBits) | ly;
+                c0 = std::min(c0, cx);
+                c1 = std::max(c1, cx + 1);
+                r0 = std::min(r0, cy);
+                r1 = std::max(r1, cy + 1);
+            }
+    }
+    // At most kMaxSide cells a side, and 2^24 in all: a larger area is drawn coarser (each
+    // picture cell the highest kept point and every outcome of the f x f cells it covers).
+    int64_t f = 1;
+    const auto cells = [&](int64_t span, int64_t k) { return (span + k - 1) / k; };
+    while (cells(c1 - c0, f) > kMaxSide || cells(r1 - r0, f) > kMaxSide ||
+           cells(c1 - c0, f) * cells(r1 - r0, f) > (int64_t{1} << 24))
+        ++f;
+    const int w = int(cells(c1 - c0, f)), h = int(cells(r1 - r0, f));
+    std::vector<float> top(std::size_t(w) * std::size_t(h), kNone);
+    std::vector<uint8_t> marks(top.size(), 0);
+    for (std::size_t k = 0; k < tiles_.size(); ++k)
+    {
+        if (!in[k]) continue;
+        const Tile& t = tiles_[k];
+        for (int64_t ly = 0; ly < kTileSide; ++ly)
+            for (int64_t lx = 0; lx < kTileSide; ++lx)
+            {
+                const auto i = static_cast<std::size_t>((ly << kTileBits) | lx);
+                if (std::isnan(t.top[i]) && t.marks[i] == 0) continue;
+                const int64_t cx = (t.tx << kTileBits) | lx, cy = (t.ty << kTileBits) | ly;
+                const auto j =
+                    std::size_t((cy - r0) / f) * std::size_t(w) + std::size_t((cx - c0) / f);
+                if (!std::isnan(t.top[i]) && !(t.top[i] <= top[j])) top[j] = t.top[i];
+                marks[j] |= t.marks[i];
+            }
+    }
     std::vector<float> tops;
-    for (std::size_t r = 0; r < rows_; ++r)
-        for (std::size_t c = 0; c < cols_; ++c)
-        {
-            const std::size_t i = r * cols_ + c;
-            if (std::isnan(top_[i]) && marks_[i] == 0) continue;
-            c0 = std::min(c0, c);
-            c1 = std::max(c1, c + 1);
-            r0 = std::min(r0, r);
-            r1 = std::max(r1, r + 1);
-            if (!std::isnan(top_[i])) tops.push_back(top_[i]);
-        }
+    for (const float z : top)
+        if (!std::isnan(z)) tops.push_back(z);
     // Grey from the 2nd to the 98th percentile of the heights.
     float zlo = 0, zhi = 1;
     if (!tops.empty())
@@ -157,20 +233,22 @@ std::pair<int, int> TopView::write(const std::string& file, const std::string& t
         zlo = at(2);
         zhi = std::max(at(98), zlo + 0.1f);
     }
-    const int w = int(c1 - c0), h = int(r1 - r0);
-    // At least min_width wide, whole pixels per cell, drawn straight into the picture below a
-    // title band; a cell with a removed (or missed, or wrongly removed) point shows that, over
-    // the grey.
-    const int scale = std::max(1, (min_width + w - 1) / w);
+    // At least min_width wide (never more than kMaxSide), whole pixels per cell, drawn straight
+    // into the picture below a title band; a cell with a removed (or missed, or wrongly
+    // removed) point shows that, over the grey. The canvas holds the legend whatever the map's
+    // shape.
+    const int scale = std::max(1, std::min((min_width + w - 1) / w, kMaxSide / std::max(w, h)));
     const int band = 40;
-    cv::Mat out(h * scale + band, w * scale, CV_8UC3, kBackground);
+    const int n = with_truth ? 4 : 2;
+    const cv::Rect legend(10, band + 10, 420, 30 + 26 * n);
+    const int canvas_w = std::max(w * scale, legend.x + legend.width + 10);
+    const int canvas_h = std::max(h * scale + band, legend.y + legend.height + 60);
+    cv::Mat out(canvas_h, canvas_w, CV_8UC3, kBackground);
     cv::Mat map = out(cv::Rect(0, band, w * scale, h * scale));
-    const auto cell = [&](int r, int c)
-    { return (r0 + std::size_t(r)) * cols_ + c0 + std::size_t(c); };
     for (int r = 0; r < h; ++r)
         for (int c = 0; c < w; ++c)
         {
-            const float z = top_[cell(r, c)];
+            const float z = top[std::size_t(r) * std::size_t(w) + std::size_t(c)];
             if (std::isnan(z)) continue;
             const double t = std::clamp((z - zlo) / (zhi - zlo), 0.0f, 1.0f);
             const auto g = static_cast<uint8_t>(70 + 185 * t);
@@ -182,7 +260,7 @@ std::pair<int, int> TopView::write(const std::string& file, const std::string& t
     for (int k = 1; k < 4; ++k)
         for (int r = 0; r < h; ++r)
             for (int c = 0; c < w; ++c)
-                if (marks_[cell(r, c)] & (1u << k))
+                if (marks[std::size_t(r) * std::size_t(w) + std::size_t(c)] & (1u << k))
                 {
                     const int row = (h - 1 - r) * scale;
                     const cv::Rect px =
@@ -192,8 +270,6 @@ std::pair<int, int> TopView::write(const std::string& file, const std::string& t
     // Title above, legend and scale bar over the map.
     const auto font = cv::FONT_HERSHEY_SIMPLEX;
     cv::putText(out, title, {12, 27}, font, 0.7, kText, 1, cv::LINE_AA);
-    const int n = with_truth ? 4 : 2;
-    const cv::Rect legend(10, band + 10, 420, 30 + 26 * n);
     out(legend) *= 0.35;
     char heights[96];
     std::snprintf(heights, sizeof heights, "kept: grey by height, %.1f m (dark) to %.1f m",
@@ -206,7 +282,8 @@ std::pair<int, int> TopView::write(const std::string& file, const std::string& t
         cv::putText(out, k == 0 ? heights : kName[k], {legend.x + 36, y}, font, 0.5, kText, 1,
                     cv::LINE_AA);
     }
-    const double m_per_px = res_ / scale;
+    pic.cell_metres = res_ * double(f);
+    const double m_per_px = pic.cell_metres / scale;
     const double len = niceLength(map.cols * m_per_px);
     const int px = int(std::lround(len / m_per_px));
     const cv::Point a(20, out.rows - 25), b(20 + px, out.rows - 25);
@@ -220,7 +297,9 @@ std::pair<int, int> TopView::write(const std::string& file, const std::string& t
                      {cv::IMWRITE_PNG_COMPRESSION, 1, cv::IMWRITE_PNG_STRATEGY,
                       cv::IMWRITE_PNG_STRATEGY_RLE}))
         throw std::runtime_error("cannot write '" + file + "'");
-    return {out.cols, out.rows};
+    pic.width = out.cols;
+    pic.height = out.rows;
+    return pic;
 }
 
 }  // namespace hif::apps

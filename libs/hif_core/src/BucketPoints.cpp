@@ -5,6 +5,7 @@
  */
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 #include "GridAccess.h"
 #include "QuantizePass.h"
@@ -76,6 +77,16 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
     out.points_valid = valid;
     out.points_near = near;
     out.points_invalid = pts.size - valid - near;
+    out.points_outside_grid = 0;
+    if (out.points_invalid > 0)
+    {
+        // Rare (no point of a normal scan is invalid): which of them are finite, so outside
+        // the grid rather than not numbers.
+        std::size_t finite = 0;
+        for (std::size_t i = 0; i < pts.size; ++i)
+            finite += std::isfinite(pts.x[i]) && std::isfinite(pts.y[i]) && std::isfinite(pts.z[i]);
+        out.points_outside_grid = finite - valid - near;
+    }
     out.keys.clear();
     out.offsets.clear();
     out.cells.resize(v);

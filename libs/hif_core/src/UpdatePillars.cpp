@@ -22,6 +22,7 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
     InsertStats st;
     st.points_used = scan.points_valid;
     st.points_invalid = scan.points_invalid;
+    st.points_outside_grid = scan.points_outside_grid;
     st.points_near = scan.points_near;
     const std::size_t np = scan.pillarCount();
 

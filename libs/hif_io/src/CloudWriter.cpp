@@ -142,7 +142,7 @@ void CloudWriter::open()
         body_file_ = files_.front() + ".part";
         body_offset_ = 0;
     }
-    f_ = std::fopen(body_file_.c_str(), "wb");
+    f_ = std::fopen(body_file_.c_str(), "w+b");  // read back if the coordinates widen
     if (!f_) throwFileError(body_file_, std::string("cannot be created: ") + std::strerror(errno));
     if (body_offset_ > 0 && std::fseek(f_, static_cast<long>(body_offset_), SEEK_SET) != 0)
         throwFileError(body_file_, std::string("cannot be written: ") + std::strerror(errno));
@@ -167,19 +167,66 @@ std::string CloudWriter::viewpointText() const
     return s.str();
 }
 
+std::size_t CloudWriter::recordBytes() const
+{
+    const std::size_t xyz = double_ ? 24 : 12;
+    return xyz + (record_ == Record::XyzRgb ? 3 : 4);
+}
+
 std::string CloudWriter::header(const std::string& file, std::size_t count) const
 {
     const std::string n = std::to_string(count);
+    const std::string ply_type = double_ ? "double" : "float";
     if (endsWith(file, ".ply"))
         return "ply\nformat binary_little_endian 1.0\ncomment written by hif\nelement vertex " + n +
-               "\nproperty float x\nproperty float y\nproperty float z\n" +
+               "\nproperty " + ply_type + " x\nproperty " + ply_type + " y\nproperty " + ply_type +
+               " z\n" +
                (record_ == Record::XyzRgb
                     ? "property uchar red\nproperty uchar green\nproperty uchar blue\n"
                     : "property float intensity\n") +
                "end_header\n";
-    return "# .PCD v0.7 - Point Cloud Data file format (written by hif)\nVERSION 0.7\n"
-           "FIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH " +
-           n + "\nHEIGHT 1\nVIEWPOINT " + viewpointText() + "\nPOINTS " + n + "\nDATA binary\n";
+    return std::string(
+               "# .PCD v0.7 - Point Cloud Data file format (written by hif)\nVERSION 0.7\n"
+               "FIELDS x y z intensity\nSIZE ") +
+           (double_ ? "8 8 8 4" : "4 4 4 4") + "\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH " + n +
+           "\nHEIGHT 1\nVIEWPOINT " + viewpointText() + "\nPOINTS " + n + "\nDATA binary\n";
+}
+
+void CloudWriter::promote()
+{
+    // The records so far, read back (they are in buf_, or in the body file and buf_), widened,
+    // and written again where a float64 body starts; rare (once a file, at most) and linear.
+    std::vector<char> old;
+    if (f_)
+    {
+        flush();
+        const std::size_t bytes = count_ * recordBytes();
+        old.resize(bytes);
+        if (std::fflush(f_) != 0 ||
+            std::fseek(f_, static_cast<long>(body_offset_), SEEK_SET) != 0 ||
+            std::fread(old.data(), 1, bytes, f_) != bytes)
+            throwFileError(body_file_,
+                           std::string("could not be read back: ") + std::strerror(errno));
+        std::fclose(std::exchange(f_, nullptr));
+        std::remove(body_file_.c_str());
+    }
+    else
+        old.assign(buf_.begin(), buf_.begin() + static_cast<std::ptrdiff_t>(used_));
+    const std::size_t n = count_, rest = record_ == Record::XyzRgb ? 3 : 4;
+    const std::size_t from = 12 + rest;
+    double_ = true;
+    count_ = 0;
+    used_ = 0;
+    for (std::size_t k = 0; k < n; ++k)
+    {
+        float xyz[3];
+        std::memcpy(xyz, old.data() + k * from, 12);
+        char v[28];
+        const double wide[3] = {xyz[0], xyz[1], xyz[2]};
+        std::memcpy(v, wide, 24);
+        std::memcpy(v + 24, old.data() + k * from + 12, rest);
+        append(v, 24 + rest);
+    }
 }
 
 void CloudWriter::close()
@@ -191,7 +238,7 @@ void CloudWriter::close()
     closed_ = true;
     if (failed) throwFileError(body_file_, "could not be closed (disk full?)");
 
-    const std::size_t bytes = count_ * (record_ == Record::XyzRgb ? 15 : 16);
+    const std::size_t bytes = count_ * recordBytes();
     std::size_t first = 0;  // the files still to write
     if (expected_)
     {

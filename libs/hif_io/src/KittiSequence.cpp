@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "hif/io/FileError.h"
+#include "hif/io/ParseNumber.h"
 
 namespace fs = std::filesystem;
 
@@ -46,17 +47,38 @@ Eigen::Isometry3d parseRow34(const std::string& line, const std::string& file,
                              const std::string& where)
 {
     std::istringstream is(line);
+    std::vector<std::string> tokens;
+    for (std::string t; is >> t;) tokens.push_back(t);
     Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
-    for (int k = 0; k < 12; ++k)
+    for (std::size_t k = 0; k < tokens.size() && k < 12; ++k)
     {
-        double v = 0;
-        if (!(is >> v) || !std::isfinite(v))
-            throwFileError(file, where + ": expected 12 numbers (a 3x4 row-major matrix), found " +
-                                     std::to_string(k) + " valid ones");
-        T(k / 4, k % 4) = v;
+        const auto v = parseNumber(tokens[k]);
+        const std::string which = "number " + std::to_string(k + 1) + " of 12, '" + tokens[k] + "'";
+        if (!v) throwFileError(file, where + ": " + which + ", is not a number");
+        if (!std::isfinite(*v)) throwFileError(file, where + ": " + which + ", is not finite");
+        T(int(k / 4), int(k % 4)) = *v;
     }
-    std::string extra;
-    if (is >> extra) throwFileError(file, where + ": more than 12 numbers on the line");
+    if (tokens.size() < 12)
+        throwFileError(file, where + ": expected 12 numbers (a 3x4 row-major matrix), found " +
+                                 std::to_string(tokens.size()));
+    if (tokens.size() > 12)
+        throwFileError(
+            file, where + ": '" + tokens[12] + "' after the 12 numbers of a 3x4 row-major matrix");
+    // A pose is a rigid motion: its rotation part orthonormal (as printed, to about 6 digits)
+    // and not a reflection.
+    const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
+    const double off = (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+    if (!(off <= kRotationTolerance) || R.determinant() <= 0)
+    {
+        std::ostringstream msg;
+        msg << where << ": not a rigid motion: the rotation part is ";
+        if (R.determinant() <= 0 && off <= kRotationTolerance)
+            msg << "a reflection (determinant " << R.determinant() << ")";
+        else
+            msg << "not orthonormal (R^T R differs from the identity by up to " << off
+                << "; tolerance " << kRotationTolerance << ")";
+        throwFileError(file, msg.str());
+    }
     Eigen::Isometry3d iso;
     iso.matrix() = T;
     return iso;
@@ -86,14 +108,20 @@ KittiSequence::KittiSequence(const std::string& dir) : dir_(dir)
 
     // calib.txt: the Tr line (LiDAR -> camera 0).
     const std::string calib = (fs::path(dir) / "calib.txt").string();
-    bool found_tr = false;
-    for (const std::string& line : readLines(calib, 1000))
-        if (line.rfind("Tr:", 0) == 0)
+    std::size_t tr_line = 0;
+    const auto calib_lines = readLines(calib, 1000);
+    for (std::size_t k = 0; k < calib_lines.size(); ++k)
+        if (calib_lines[k].rfind("Tr:", 0) == 0)
         {
-            Tr_ = parseRow34(line.substr(3), calib, "line Tr");
-            found_tr = true;
+            if (tr_line > 0)
+                throwFileError(calib, "has two 'Tr:' lines (" + std::to_string(tr_line) + " and " +
+                                          std::to_string(k + 1) +
+                                          "): which LiDAR to camera calibration is meant?");
+            tr_line = k + 1;
+            Tr_ = parseRow34(calib_lines[k].substr(3), calib,
+                             "line " + std::to_string(tr_line) + " (Tr)");
         }
-    if (!found_tr) throwFileError(calib, "has no 'Tr:' line (LiDAR to camera calibration)");
+    if (tr_line == 0) throwFileError(calib, "has no 'Tr:' line (LiDAR to camera calibration)");
 
     // poses.txt: at least one camera-0 pose per scan (the full sequence may have more).
     const std::string posef = (fs::path(dir) / "poses.txt").string();
@@ -118,11 +146,14 @@ KittiSequence::KittiSequence(const std::string& dir) : dir_(dir)
     for (std::size_t i = 0; i < scan_count_; ++i)
     {
         std::istringstream is(time_lines[i]);
-        double t = 0;
-        if (!(is >> t) || !std::isfinite(t))
-            throwFileError(
-                timef, "line " + std::to_string(i + 1) + ": not a number: '" + time_lines[i] + "'");
-        times_.push_back(t);
+        std::string token, extra;
+        is >> token >> extra;
+        const auto t = parseNumber(token);
+        if (!t || !std::isfinite(*t) || !extra.empty())
+            throwFileError(timef, "line " + std::to_string(i + 1) +
+                                      ": expected one finite number (seconds), found '" +
+                                      time_lines[i] + "'");
+        times_.push_back(*t);
     }
 
     has_labels_ = fs::is_directory(fs::path(dir) / "labels");

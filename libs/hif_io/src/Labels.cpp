@@ -36,6 +36,7 @@ void writeLabels(const std::string& file, const std::vector<uint32_t>& labels)
     if (!f) throwFileError(file, "cannot be created");
     f.write(reinterpret_cast<const char*>(labels.data()),
             static_cast<std::streamsize>(labels.size() * sizeof(uint32_t)));
+    f.close();  // the last bytes are written here
     if (!f) throwFileError(file, "could not be written (disk full?)");
 }
 

@@ -11,6 +11,7 @@
 
 #include "hif/io/CloudFiles.h"
 #include "hif/io/FileError.h"
+#include "hif/io/ParseNumber.h"
 
 namespace hif::io
 {
@@ -54,6 +55,7 @@ PcdCloud readPcd(const std::string& file)
             out.viewpoint = Eigen::Isometry3d::Identity();
             out.viewpoint.linear() = q.normalized().toRotationMatrix();
             out.viewpoint.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+            out.has_viewpoint = true;
         }
         else if (key == "DATA")
         {
@@ -85,11 +87,12 @@ PcdCloud readPcd(const std::string& file)
     f.seekg(data_start);
     int ix = -1, iy = -1, iz = -1, ii = -1;
     std::vector<std::size_t> offset(fields.size());
-    std::size_t stride = 0;
+    std::size_t stride = 0, stride_values = 0;
     for (std::size_t k = 0; k < fields.size(); ++k)
     {
         offset[k] = stride;
         stride += static_cast<std::size_t>(sizes[k] * counts[k]);
+        stride_values += static_cast<std::size_t>(counts[k]);
         const int kk = static_cast<int>(k);
         if (fields[k] == "x") ix = kk;
         if (fields[k] == "y") iy = kk;
@@ -97,10 +100,13 @@ PcdCloud readPcd(const std::string& file)
         if (fields[k] == "intensity") ii = kk;
     }
     if (ix < 0 || iy < 0 || iz < 0) throwFileError(file, "has no x, y and z fields");
-    for (int k : {ix, iy, iz, ii})
-        if (k >= 0 && (types[k] != 'F' || sizes[k] != 4))
-            throwFileError(file,
-                           "has a field " + fields[k] + " that is not float32 (TYPE F, SIZE 4)");
+    for (int k : {ix, iy, iz})
+        if (types[k] != 'F' || (sizes[k] != 4 && sizes[k] != 8))
+            throwFileError(file, "has a field " + fields[k] +
+                                     " that is neither float32 nor float64 (TYPE F, SIZE 4 or 8)");
+    if (ii >= 0 && (types[ii] != 'F' || sizes[ii] != 4))
+        throwFileError(file, "has a field intensity that is not float32 (TYPE F, SIZE 4)");
+    const bool wide = sizes[ix] == 8 || sizes[iy] == 8 || sizes[iz] == 8;
     // Binary points take `stride` bytes each; ascii ones at least two ("0\n").
     const std::size_t min_bytes = data == "binary" ? stride : 2;
     if (points > data_bytes / min_bytes)
@@ -110,6 +116,19 @@ PcdCloud readPcd(const std::string& file)
     out.y.resize(points);
     out.z.resize(points);
     out.intensity.assign(points, 0.0f);
+    // float64 coordinates are kept as float32 offsets from an origin near them.
+    bool have_origin = !wide;
+    const auto store = [&](std::size_t p, double vx, double vy, double vz)
+    {
+        if (!have_origin && std::isfinite(vx) && std::isfinite(vy) && std::isfinite(vz))
+        {
+            out.origin = Eigen::Vector3d(vx, vy, vz);
+            have_origin = true;
+        }
+        out.x[p] = static_cast<float>(vx - out.origin.x());
+        out.y[p] = static_cast<float>(vy - out.origin.y());
+        out.z[p] = static_cast<float>(vz - out.origin.z());
+    };
     if (data == "binary")
     {
         // One read of the whole body, then the fields picked out of each record.
@@ -119,46 +138,102 @@ PcdCloud readPcd(const std::string& file)
         if (!f.read(body.data(), static_cast<std::streamsize>(body.size())))
             throwFileError(file, "is truncated: POINTS says " + std::to_string(points) +
                                      ", found " + std::to_string(f.gcount() / stride));
-        // One pass over the records (the usual x y z intensity at 0, 4, 8, 12 vectorizes).
         const std::size_t ox = offset[ix], oy = offset[iy], oz = offset[iz];
         const std::size_t oi = ii >= 0 ? offset[ii] : 0;
         const char* rec = body.data();
-        for (std::size_t p = 0; p < points; ++p, rec += stride)
+        if (!wide)
         {
-            std::memcpy(&out.x[p], rec + ox, 4);
-            std::memcpy(&out.y[p], rec + oy, 4);
-            std::memcpy(&out.z[p], rec + oz, 4);
-            if (ii >= 0) std::memcpy(&out.intensity[p], rec + oi, 4);
+            // One pass over the records (the usual x y z intensity at 0, 4, 8, 12 vectorizes).
+            for (std::size_t p = 0; p < points; ++p, rec += stride)
+            {
+                std::memcpy(&out.x[p], rec + ox, 4);
+                std::memcpy(&out.y[p], rec + oy, 4);
+                std::memcpy(&out.z[p], rec + oz, 4);
+                if (ii >= 0) std::memcpy(&out.intensity[p], rec + oi, 4);
+            }
+        }
+        else
+        {
+            const auto coord = [](const char* at, int size)
+            {
+                if (size == 8)
+                {
+                    double d;
+                    std::memcpy(&d, at, 8);
+                    return d;
+                }
+                float v;
+                std::memcpy(&v, at, 4);
+                return double(v);
+            };
+            for (std::size_t p = 0; p < points; ++p, rec += stride)
+            {
+                store(p, coord(rec + ox, sizes[ix]), coord(rec + oy, sizes[iy]),
+                      coord(rec + oz, sizes[iz]));
+                if (ii >= 0) std::memcpy(&out.intensity[p], rec + oi, 4);
+            }
         }
     }
     else
     {
         std::vector<double> vals;
+        std::vector<double> first(fields.size());
+        std::string line, token;
         for (std::size_t p = 0; p < points; ++p)
         {
-            std::string line;
             if (!std::getline(f, line))
                 throwFileError(file, "is truncated: POINTS says " + std::to_string(points) +
                                          ", found " + std::to_string(p));
+            // Tokens one by one: strtod reads "nan" (PCL's invalid point) and "inf", which
+            // operator>> does not.
             std::istringstream is(line);
             vals.clear();
-            for (double v; is >> v;) vals.push_back(v);
+            while (is >> token)
+            {
+                const auto v = parseNumber(token);
+                if (!v)
+                    throwFileError(file, "line " + std::to_string(p + 1) + " of the data: '" +
+                                             token + "' is not a number");
+                vals.push_back(*v);
+            }
             std::size_t col = 0;
-            std::vector<double> first(fields.size());
             for (std::size_t k = 0; k < fields.size(); ++k)
             {
                 if (col >= vals.size())
-                    throwFileError(file, "has a short line " + std::to_string(p + 1));
+                    throwFileError(file, "has a short line " + std::to_string(p + 1) +
+                                             " of the data (" + std::to_string(vals.size()) +
+                                             " values for " + std::to_string(stride_values) + ")");
                 first[k] = vals[col];
                 col += static_cast<std::size_t>(counts[k]);
             }
-            out.x[p] = static_cast<float>(first[ix]);
-            out.y[p] = static_cast<float>(first[iy]);
-            out.z[p] = static_cast<float>(first[iz]);
+            if (wide)
+                store(p, first[ix], first[iy], first[iz]);
+            else
+            {
+                out.x[p] = static_cast<float>(first[ix]);
+                out.y[p] = static_cast<float>(first[iy]);
+                out.z[p] = static_cast<float>(first[iz]);
+            }
             if (ii >= 0) out.intensity[p] = static_cast<float>(first[ii]);
         }
     }
     return out;
+}
+
+void toViewpointFrame(PcdCloud& pcd)
+{
+    const Eigen::Isometry3d inv = pcd.viewpoint.inverse();
+    const bool zero_origin = pcd.origin.isZero(0.0);
+    for (std::size_t i = 0; i < pcd.size(); ++i)
+    {
+        // With a zero origin, exactly what transform(pcd, inv) does.
+        const Eigen::Vector3d p =
+            inv * (zero_origin ? Eigen::Vector3d(pcd.x[i], pcd.y[i], pcd.z[i]) : pcd.point(i));
+        pcd.x[i] = static_cast<float>(p.x());
+        pcd.y[i] = static_cast<float>(p.y());
+        pcd.z[i] = static_cast<float>(p.z());
+    }
+    pcd.origin.setZero();
 }
 
 }  // namespace hif::io

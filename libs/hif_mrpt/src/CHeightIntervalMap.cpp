@@ -75,26 +75,44 @@ bool CHeightIntervalMap::internal_insertObservation(
     return last_insert_.points_used > 0;
 }
 
-bool CHeightIntervalMap::observationToWorldPoints(const mrpt::obs::CObservation& obs,
-                                                  const mrpt::poses::CPose3D& robotPose,
-                                                  std::vector<float>& xs, std::vector<float>& ys,
-                                                  std::vector<float>& zs)
+namespace
+{
+template <typename T>
+bool worldPointsOf(const mrpt::obs::CObservation& obs, const mrpt::poses::CPose3D& robotPose,
+                   std::vector<T>& xs, std::vector<T>& ys, std::vector<T>& zs)
 {
     SensorPoints sp;
     if (!mrpt_adapter::sensorPoints(obs, sp)) return false;
-    const Eigen::Isometry3d T = mrpt_adapter::toIsometry(robotPose + sp.sensor_pose);
+    const Eigen::Isometry3d T_w = mrpt_adapter::toIsometry(robotPose + sp.sensor_pose);
     const PointsView& v = sp.view;
     xs.resize(v.size);
     ys.resize(v.size);
     zs.resize(v.size);
     for (std::size_t i = 0; i < v.size; ++i)
     {
-        const Eigen::Vector3d p = T * Eigen::Vector3d(v.x[i], v.y[i], v.z[i]);
-        xs[i] = static_cast<float>(p.x());
-        ys[i] = static_cast<float>(p.y());
-        zs[i] = static_cast<float>(p.z());
+        const Eigen::Vector3d p = T_w * Eigen::Vector3d(v.x[i], v.y[i], v.z[i]);
+        xs[i] = static_cast<T>(p.x());
+        ys[i] = static_cast<T>(p.y());
+        zs[i] = static_cast<T>(p.z());
     }
     return true;
+}
+}  // namespace
+
+bool CHeightIntervalMap::observationToWorldPoints(const mrpt::obs::CObservation& obs,
+                                                  const mrpt::poses::CPose3D& robotPose,
+                                                  std::vector<float>& xs, std::vector<float>& ys,
+                                                  std::vector<float>& zs)
+{
+    return worldPointsOf(obs, robotPose, xs, ys, zs);
+}
+
+bool CHeightIntervalMap::observationToWorldPoints(const mrpt::obs::CObservation& obs,
+                                                  const mrpt::poses::CPose3D& robotPose,
+                                                  std::vector<double>& xs, std::vector<double>& ys,
+                                                  std::vector<double>& zs)
+{
+    return worldPointsOf(obs, robotPose, xs, ys, zs);
 }
 
 double CHeightIntervalMap::staticProbability(const mrpt::math::TPoint3D& p) const
@@ -170,7 +188,7 @@ bool CHeightIntervalMap::internal_canComputeObservationLikelihood(
 double CHeightIntervalMap::internal_computeObservationLikelihood(
     const mrpt::obs::CObservation& obs, const mrpt::poses::CPose3D& takenFrom) const
 {
-    std::vector<float> xs, ys, zs;
+    std::vector<double> xs, ys, zs;  // world coordinates: double (UTM keeps its millimetres)
     if (!observationToWorldPoints(obs, takenFrom, xs, ys, zs)) return 0.0;
     double loglik = 0.0;
     for (std::size_t i = 0; i < xs.size(); ++i)

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 
@@ -33,8 +34,21 @@ struct GridGeometry
     /** The fields, for loops over them (see FieldTable.h). */
     [[nodiscard]] static const std::array<Field<GridGeometry>, 4>& fields();
 
-    /** Throws std::invalid_argument naming the first invalid field and its value. */
-    void validate() const { validateFields(*this, "hif::GridGeometry"); }
+    /** Throws std::invalid_argument naming the first invalid field and its value; also when the
+     *  world's origin (0, 0) has no pillar index (|origin| / pillar_size must be below 2^31),
+     *  which would leave every point of a real map outside the grid. */
+    void validate() const
+    {
+        constexpr const char* kOwner = "hif::GridGeometry";
+        validateFields(*this, kOwner);
+        constexpr double kIndexRange = 2147483648.0;  // 2^31 pillars on each side of the origin
+        if (!(std::abs(origin_x) / pillar_size < kIndexRange))
+            throwInvalid(kOwner, "origin_x", origin_x,
+                         "such that |origin_x| / pillar_size < 2^31 (the grid's index range)");
+        if (!(std::abs(origin_y) / pillar_size < kIndexRange))
+            throwInvalid(kOwner, "origin_y", origin_y,
+                         "such that |origin_y| / pillar_size < 2^31 (the grid's index range)");
+    }
 
     /** Pillar containing world (x, y) (Eq. 1); nullopt if the index does not fit in int32. */
     [[nodiscard]] std::optional<PillarIndex> pillarOf(double x, double y) const

@@ -37,8 +37,11 @@ struct PointsView
 /** What one insertScan() did. */
 struct InsertStats
 {
-    std::size_t points_used = 0;      ///< points that updated the map
-    std::size_t points_invalid = 0;   ///< non-finite, or outside the int32 index range: skipped
+    std::size_t points_used = 0;     ///< points that updated the map
+    std::size_t points_invalid = 0;  ///< non-finite, or outside the int32 index range: skipped
+    /** Of points_invalid, the finite points whose pillar or height cell does not fit in int32
+     *  (more than 2^31 pillars or height cells from the origin): a pose or an origin far off. */
+    std::size_t points_outside_grid = 0;
     std::size_t points_near = 0;      ///< nearer the sensor than Params::min_range: skipped
     std::size_t pillars_updated = 0;  ///< existing pillars matched by the scan
     std::size_t pillars_created = 0;  ///< pillars seen for the first time

@@ -60,7 +60,9 @@ public:
     /** staticProbability(p) >= the static_threshold in effect. */
     [[nodiscard]] bool isStatic(const mrpt::math::TPoint3D& p) const;
     /** Classifies points given in the world frame: isDynamic[i] = 1 unless point i is static.
-     *  Returns the counts. */
+     *  Returns the counts. A CPointsMap holds float32 coordinates, which keep millimetres only
+     *  below about 8 km from the origin: for world coordinates in the millions of metres (UTM),
+     *  classify the observation at its pose instead (computed in double). */
     ClassifyStats classify(const mrpt::maps::CPointsMap& worldPoints,
                            std::vector<uint8_t>& isDynamic) const;
     /** Classifies the points of an observation taken at `robotPose`, placed in the world
@@ -110,6 +112,12 @@ public:
                                          const mrpt::poses::CPose3D& robotPose,
                                          std::vector<float>& xs, std::vector<float>& ys,
                                          std::vector<float>& zs);
+    /** observationToWorldPoints() in double: world coordinates in the millions of metres (UTM,
+     *  ENU with a large offset) keep their millimetres, which float32 does not. */
+    static bool observationToWorldPoints(const mrpt::obs::CObservation& obs,
+                                         const mrpt::poses::CPose3D& robotPose,
+                                         std::vector<double>& xs, std::vector<double>& ys,
+                                         std::vector<double>& zs);
     /** @} */
 
     /** @name Options

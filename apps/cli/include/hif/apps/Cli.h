@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "hif/apps/Interrupt.h"
+
 namespace hif::apps
 {
 using Clock = std::chrono::steady_clock;
@@ -107,14 +109,16 @@ inline std::string errorMessage(const std::exception& e)
     return e.what();
 }
 
-/** The whole main() of an app: parses the command line into a `Cli` (which holds a TCLAP
- *  `cmd` with its arguments), calls `run(cli)`, and turns any exception into
- *  "<tag> error: <what>" on stderr and exit code 1. MRPT's TCLAP reports a bad command line
- *  and --help / --version itself and returns false from parse(): then the app does not run,
- *  and exits with 0 for --help / --version, 1 for a bad command line. */
+/** The whole main() of an app: from the start, a run stopped by SIGINT, SIGTERM or SIGHUP
+ *  removes its partial outputs (removePartialsOnInterrupt()); parses the command line into a
+ *  `Cli` (which holds a TCLAP `cmd` with its arguments), calls `run(cli)`, and turns any
+ *  exception into "<tag> error: <what>" on stderr and exit code 1. MRPT's TCLAP reports a bad
+ * command line and --help / --version itself and returns false from parse(): then the app does not
+ * run, and exits with 0 for --help / --version, 1 for a bad command line. */
 template <typename Cli, typename Run>
 int cliMain(const char* tag, int argc, char** argv, Run run)
 {
+    removePartialsOnInterrupt(tag);
     try
     {
         Cli cli;

@@ -3,17 +3,37 @@
  * @file   TopView.h
  * @brief  A bird's-eye picture of a cleaned map (OpenCV): kept points in grey by height, removed
  *         points in red and, with ground truth, missed moving points and wrongly removed static
- *         ones in their own colours; a legend and a scale bar.
+ *         ones in their own colours; a legend and a scale bar. The picture shows the map's main
+ *         area, whatever stray points or poses far from it the input has, and its size is
+ *         bounded.
  */
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace hif::apps
 {
+/** A block of a coarse grid over the ground (index bx, by) and how much it holds. */
+struct WeightedBlock
+{
+    int64_t bx = 0, by = 0;
+    std::size_t weight = 0;
+};
+
+/** Which blocks form the main area: the group, heaviest in total, of blocks linked to one
+ *  another through blocks at most `reach` blocks apart (in x and y). The map of a drive is one
+ *  such group; a stray point or a pose far off makes a small group of its own, left out.
+ *  Returns a flag per block. */
+[[nodiscard]] std::vector<bool> mainArea(const std::vector<WeightedBlock>& blocks, int64_t reach);
+
+/** Blocks farther apart than this (metres) of empty ground belong to different areas. */
+constexpr double kAreaLinkMetres = 100.0;
+
 class TopView
 {
 public:
@@ -31,55 +51,96 @@ public:
     static constexpr uint8_t kRgb[4][3] = {
         {200, 200, 200}, {230, 40, 40}, {255, 215, 0}, {0, 160, 255}};
 
-    /** Cells of `resolution` metres; coarser (twice, as often as needed) when the area would
+    /** The longest side of a picture, pixels: a larger area is drawn coarser. */
+    static constexpr int kMaxSide = 8000;
+
+    /** Cells of `resolution` metres, kept in tiles where points fell (memory follows the area
+     *  covered, not its bounding box); coarser (twice, as often as needed) when they would
      *  need more than `max_cells`. */
     explicit TopView(double resolution = 0.2, std::size_t max_cells = std::size_t{1} << 23);
 
-    /** Makes room for [x0, x1) x [y0, y1) at once (the extent of a map known beforehand), so
-     *  that the cells are not grown point by point. Before any point, it also sets the cells'
-     *  size so that the longer side spans about `pixels` cells (5 cm at the finest): the
-     *  picture then needs no scaling up. */
+    /** Before the first point: the cells' size such that the longer side of [x0, x1) x [y0, y1)
+     *  (the main area of a map known beforehand) spans about `pixels` cells (5 cm at the
+     *  finest), so that the picture needs no scaling up. Ignored after the first point. */
     void cover(double x0, double y0, double x1, double y1, int pixels = 1300);
 
-    void add(float x, float y, float z, Outcome outcome)
+    void add(double x, double y, float z, Outcome outcome)
     {
-        if (!(x >= x0_ && x < x1_ && y >= y0_ && y < y1_)) grow(x, y);
-        if (!(x >= x0_ && x < x1_ && y >= y0_ && y < y1_)) return;  // not finite
-        const auto c = static_cast<std::size_t>((x - x0_) * inv_res_);
-        const auto r = static_cast<std::size_t>((y - y0_) * inv_res_);
-        const std::size_t i = r * cols_ + c;
+        const double fx = x * inv_res_, fy = y * inv_res_;
+        if (!(fx > -kMaxCell && fx < kMaxCell && fy > -kMaxCell && fy < kMaxCell))
+        {
+            far_ += (fx == fx && fy == fy) ? 1 : 0;  // NaN: not a point, not counted
+            return;
+        }
+        const auto cx = static_cast<int64_t>(fx) - (fx < 0 && fx != double(int64_t(fx)));
+        const auto cy = static_cast<int64_t>(fy) - (fy < 0 && fy != double(int64_t(fy)));
+        Tile* tp = tile(cx >> kTileBits, cy >> kTileBits);
+        if (tp == nullptr) return add(x, y, z, outcome);  // the cells grew: again, at their size
+        Tile& t = *tp;
+        const std::size_t i =
+            static_cast<std::size_t>(((cy & kTileMask) << kTileBits) | (cx & kTileMask));
         if (outcome == kKept)
         {
-            if (!(z <= top_[i])) top_[i] = z;  // top_ starts NaN
+            if (!(z <= t.top[i])) t.top[i] = z;  // top starts NaN
         }
         else
-            marks_[i] |= static_cast<uint8_t>(1u << outcome);
-        any_ = true;
+            t.marks[i] |= static_cast<uint8_t>(1u << outcome);
+        ++t.points;
     }
 
-    /** Writes the picture (PNG) of what was added, at least `min_width` pixels wide, with
-     *  `title` above; `with_truth` puts the two ground-truth outcomes in the legend. Returns
-     *  {width, height}. Throws std::runtime_error naming the file when nothing was added or it
-     *  cannot be written. */
-    std::pair<int, int> write(const std::string& file, const std::string& title, bool with_truth,
-                              int min_width = 1200) const;
+    /** The picture as written. */
+    struct Picture
+    {
+        int width = 0, height = 0;
+        /** Points left out: apart from the main area (see mainArea()), or too far from the
+         *  origin to draw at all. */
+        std::size_t points_outside = 0;
+        std::size_t points = 0;  ///< every point added (NaN excepted)
+        double cell_metres = 0;  ///< what one cell of the picture covers
+    };
+
+    /** Writes the picture (PNG) of the main area of what was added, at least `min_width` pixels
+     *  wide where kMaxSide allows, with `title` above; `with_truth` puts the two ground-truth
+     *  outcomes in the legend. Throws std::runtime_error naming the file when nothing was added
+     *  or it cannot be written. */
+    Picture write(const std::string& file, const std::string& title, bool with_truth,
+                  int min_width = 1200) const;
 
     [[nodiscard]] double resolution() const { return res_; }
+    /** No point to draw was added (none, or only points too far from the origin). */
+    [[nodiscard]] bool empty() const { return tiles_.empty(); }
 
 private:
-    void grow(float x, float y);
-    /** The cells cover [x0, x1) x [y0, y1), coarser (twice, as often as needed) if that would
-     *  take more than max_cells_, edges on multiples of the cell size. */
-    void resizeTo(double x0, double y0, double x1, double y1);
-    void rebuild(double x0, double y0, std::size_t cols, std::size_t rows, double res);
+    static constexpr int kTileBits = 7;  ///< tiles of 128 x 128 cells
+    static constexpr int64_t kTileSide = int64_t{1} << kTileBits;
+    static constexpr int64_t kTileMask = kTileSide - 1;
+    static constexpr std::size_t kTileCells = std::size_t{1} << (2 * kTileBits);
+    static constexpr double kMaxCell = 137438953472.0;  ///< 2^37 cells: tile indices fit int32
+
+    struct Tile
+    {
+        int64_t tx = 0, ty = 0;
+        std::vector<float> top;      ///< highest kept point of each cell, NaN for none
+        std::vector<uint8_t> marks;  ///< bit per outcome other than kept
+        std::size_t points = 0;
+    };
+
+    /** The tile, made if needed; nullptr if making it coarsened the cells instead. */
+    Tile* tile(int64_t tx, int64_t ty)
+    {
+        if (last_ != nullptr && last_->tx == tx && last_->ty == ty) return last_;
+        return findOrAdd(tx, ty);
+    }
+    Tile* findOrAdd(int64_t tx, int64_t ty);
+    /** Twice the cell size: every 2 x 2 cells become one. */
+    void coarsen();
 
     double res_, inv_res_;
     std::size_t max_cells_;
-    double x0_ = 0, y0_ = 0, x1_ = 0, y1_ = 0;  ///< the cells cover [x0, x1) x [y0, y1)
-    std::size_t cols_ = 0, rows_ = 0;
-    std::vector<float> top_;      ///< highest kept point of each cell, NaN for none
-    std::vector<uint8_t> marks_;  ///< bit per outcome other than kept
-    bool any_ = false;
+    std::vector<Tile> tiles_;
+    std::unordered_map<uint64_t, std::size_t> index_;  ///< packed (tx, ty) -> tiles_ index
+    Tile* last_ = nullptr;
+    std::size_t far_ = 0;
 };
 
 }  // namespace hif::apps

@@ -50,9 +50,10 @@ struct ScanBuckets
     /** Top beam's elevation as the largest z * |z| / (x^2 + y^2) of the points farther than
      *  2 m horizontally (sensor frame; monotone in z / range, no square root); -inf if none. */
     double top_slope_sq = -std::numeric_limits<double>::infinity();
-    std::size_t points_valid = 0;    ///< valid input points, repeats included
-    std::size_t points_invalid = 0;  ///< non-finite, or outside the int32 index range
-    std::size_t points_near = 0;     ///< nearer the sensor than Params::min_range
+    std::size_t points_valid = 0;         ///< valid input points, repeats included
+    std::size_t points_invalid = 0;       ///< non-finite, or outside the int32 index range
+    std::size_t points_outside_grid = 0;  ///< of those, the finite ones
+    std::size_t points_near = 0;          ///< nearer the sensor than Params::min_range
 
     [[nodiscard]] std::size_t pillarCount() const { return keys.size(); }
     [[nodiscard]] std::size_t entryCount() const { return cells.size(); }

@@ -19,9 +19,9 @@ namespace hif::io
  *  present, `labels/NNNNNN.label`.
  *  The constructor checks everything it can before any scan is read, and throws
  *  std::runtime_error naming the file and the problem: a missing folder or file, a
- *  `calib.txt` without `Tr`, a malformed line, fewer poses or times than scans, scan files
- *  that are not numbered 000000, 000001, ... without gaps, or a .bin whose size is not a
- *  multiple of 16 bytes. */
+ *  `calib.txt` without `Tr` or with two, a malformed line or a pose that is not a rigid motion,
+ * fewer poses or times than scans, scan files that are not numbered 000000, 000001, ... without
+ * gaps, or a .bin whose size is not a multiple of 16 bytes. */
 class KittiSequence
 {
 public:
@@ -60,8 +60,14 @@ private:
 /** "%06d" file stem used by KITTI and SemanticKITTI. */
 [[nodiscard]] std::string frameName(std::size_t i);
 
-/** Reads a 3x4 row-major matrix (12 numbers) from `line` of `file`; throws naming the file and
- *  `where` (e.g. "line 3") if it does not hold exactly 12 finite numbers. */
+/** How far R^T R of a pose's rotation may differ from the identity (largest element): poses
+ *  printed with 4 or more significant digits pass, a scaled or degenerate matrix does not. */
+constexpr double kRotationTolerance = 1e-3;
+
+/** Reads a 3x4 row-major matrix (12 numbers) from `line` of `file`, a rigid motion; throws
+ *  naming the file, `where` (e.g. "line 3") and the problem: a token that is not a number or
+ *  not finite (which one), fewer or more than 12, or a rotation part that is not orthonormal
+ *  within kRotationTolerance (or is a reflection). */
 [[nodiscard]] Eigen::Isometry3d parseRow34(const std::string& line, const std::string& file,
                                            const std::string& where);
 
