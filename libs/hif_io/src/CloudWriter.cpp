@@ -94,7 +94,8 @@ void writeHeaderAndCopy(const std::string& file, const std::string& header, cons
         length -= static_cast<std::size_t>(n);
     }
     if (::close(std::exchange(out.fd, -1)) != 0)
-        throwFileError(file, "could not be written (disk full?)");
+        throwFileError(file,
+                       std::string("could not be written (disk full?): ") + std::strerror(errno));
 }
 }  // namespace
 
@@ -152,7 +153,8 @@ void CloudWriter::flush()
 {
     if (!f_) open();
     if (used_ > 0 && std::fwrite(buf_.data(), 1, used_, f_) != used_)
-        throwFileError(body_file_, "could not be written (disk full?)");
+        throwFileError(body_file_,
+                       std::string("could not be written (disk full?): ") + std::strerror(errno));
     used_ = 0;
 }
 
@@ -236,7 +238,9 @@ void CloudWriter::close()
     const bool failed = std::fclose(f_) != 0;
     f_ = nullptr;
     closed_ = true;
-    if (failed) throwFileError(body_file_, "could not be closed (disk full?)");
+    if (failed)
+        throwFileError(body_file_,
+                       std::string("could not be closed (disk full?): ") + std::strerror(errno));
 
     const std::size_t bytes = count_ * recordBytes();
     std::size_t first = 0;  // the files still to write

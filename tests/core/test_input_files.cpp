@@ -1,0 +1,243 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   test_input_files.cpp
+ * @brief  What the readers take and refuse: poses that are not rigid motions, a calibration with
+ *         two Tr lines, numbers that are not finite or not numbers (named by line and position);
+ *         PCD files with float64 coordinates (UTM) and PCL's "nan" for an invalid point; and
+ *         the writer's switch to float64 where a coordinate needs it.
+ */
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "hif/io/CloudFiles.h"
+#include "hif/io/KittiSequence.h"
+#include "work_dir.h"
+
+namespace fs = std::filesystem;
+
+namespace
+{
+hif::test::WorkDir scratch(const std::string& name)
+{
+    return hif::test::WorkDir(fs::temp_directory_path() /
+                              ("hif_input_" + name + "_" + std::to_string(getpid())));
+}
+
+const std::string kIdentity = "1 0 0 0 0 1 0 0 0 0 1 0";
+
+/** A one-scan KITTI folder with these poses.txt and calib.txt lines. */
+std::string sequence(const hif::test::WorkDir& work, const std::vector<std::string>& poses,
+                     const std::vector<std::string>& calib, const std::string& times = "0")
+{
+    const fs::path d = work.path();
+    fs::create_directories(d / "velodyne");
+    const float point[4] = {5, 0, 0, 1};
+    std::ofstream(d / "velodyne" / "000000.bin", std::ios::binary)
+        .write(reinterpret_cast<const char*>(point), sizeof point);
+    std::ofstream p(d / "poses.txt"), c(d / "calib.txt"), t(d / "times.txt");
+    for (const auto& l : poses) p << l << "\n";
+    for (const auto& l : calib) c << l << "\n";
+    t << times << "\n";
+    return d.string();
+}
+
+std::string errorOf(const std::string& dir)
+{
+    try
+    {
+        const hif::io::KittiSequence seq(dir);
+    }
+    catch (const std::exception& e)
+    {
+        return e.what();
+    }
+    return "no error";
+}
+}  // namespace
+
+TEST(KittiSequence, APoseMustBeARigidMotion)
+{
+    const auto work = scratch("rigid");
+    const std::string tr = "Tr: " + kIdentity;
+    // KITTI's own rows (6 digits) pass; a scaled rotation, zeros and a reflection do not.
+    EXPECT_EQ(errorOf(sequence(work,
+                               {"1 -0.000547252 -0.000750314 -0.00231195 0.000548409 "
+                                "0.999999 0.00154008 -0.0396405 0.00074947 -0.00154049 "
+                                "0.999999 1.24666"},
+                               {tr})),
+              "no error");
+    const std::string scaled = errorOf(sequence(work, {"2 0 0 0 0 2 0 0 0 0 2 0"}, {tr}));
+    EXPECT_NE(scaled.find("poses.txt' line 1: not a rigid motion: the rotation part is not "
+                          "orthonormal (R^T R differs from the identity by up to 3"),
+              std::string::npos)
+        << scaled;
+    EXPECT_NE(errorOf(sequence(work, {"0 0 0 0 0 0 0 0 0 0 0 0"}, {tr})).find("not a rigid motion"),
+              std::string::npos);
+    EXPECT_NE(errorOf(sequence(work, {"-1 0 0 0 0 1 0 0 0 0 1 0"}, {tr})).find("a reflection"),
+              std::string::npos);
+    // The calibration is a pose too.
+    EXPECT_NE(errorOf(sequence(work, {kIdentity}, {"Tr: 1 0 0 0 0 1 0 0 0 0 0.5 0"}))
+                  .find("calib.txt' line 1 (Tr): not a rigid motion"),
+              std::string::npos);
+}
+
+TEST(KittiSequence, NumbersAreNamedByLineAndPosition)
+{
+    const auto work = scratch("numbers");
+    const std::string tr = "Tr: " + kIdentity;
+    const auto pose = [&](const std::string& row) {
+        return errorOf(sequence(work, {kIdentity, row}, {tr}));
+    };
+    // Only scan 0 exists, so line 2 is not read: a bad line 1 is.
+    const auto first = [&](const std::string& row) { return errorOf(sequence(work, {row}, {tr})); };
+    EXPECT_EQ(pose("garbage"), "no error");  // beyond the scans: not read
+    EXPECT_NE(
+        first("1 inf 0 0 0 1 0 0 0 0 1 0").find("line 1: number 2 of 12, 'inf', is not finite"),
+        std::string::npos);
+    EXPECT_NE(first("1 0 0 0 0 1 0 nan 0 0 1 0").find("number 8 of 12, 'nan', is not finite"),
+              std::string::npos);
+    EXPECT_NE(first("1 0 0 0 0 1 0 1.5m 0 0 1 0").find("number 8 of 12, '1.5m', is not a number"),
+              std::string::npos);
+    EXPECT_NE(first("1 0 0 0 0 1 0 0 0 0 1")
+                  .find("expected 12 numbers (a 3x4 row-major matrix), "
+                        "found 11"),
+              std::string::npos);
+    EXPECT_NE(first(kIdentity + " abc").find("line 1: 'abc' after the 12 numbers"),
+              std::string::npos);
+    EXPECT_NE(errorOf(sequence(work, {kIdentity}, {tr}, "inf"))
+                  .find("times.txt' line 1: expected one finite number (seconds), found 'inf'"),
+              std::string::npos);
+}
+
+TEST(KittiSequence, ACalibrationWithTwoTrLinesIsRefused)
+{
+    const auto work = scratch("two_tr");
+    const std::string e = errorOf(sequence(
+        work, {kIdentity},
+        {"P0: 1 0 0 0 0 1 0 0 0 0 1 0", "Tr: " + kIdentity, "Tr: 0 -1 0 0 0 0 -1 0 1 0 0 0"}));
+    EXPECT_NE(e.find("calib.txt' has two 'Tr:' lines (2 and 3)"), std::string::npos) << e;
+}
+
+TEST(ReadPcd, AsciiNanIsAnInvalidPointAndFloat64KeepsTheMillimetres)
+{
+    const auto work = scratch("pcd");
+    const std::string ascii = work.path() + "/ascii.pcd";
+    std::ofstream(ascii) << "VERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\n"
+                            "COUNT 1 1 1 1\nWIDTH 3\nHEIGHT 1\nVIEWPOINT 1 2 3 1 0 0 0\nPOINTS 3\n"
+                            "DATA ascii\n1 2 3 0.5\nnan nan nan 0\n-1e2 0 7 1\n";
+    const hif::io::PcdCloud a = hif::io::readPcd(ascii);
+    ASSERT_EQ(a.size(), 3u);
+    EXPECT_TRUE(a.has_viewpoint);
+    EXPECT_TRUE(std::isnan(a.x[1]) && std::isnan(a.y[1]) && std::isnan(a.z[1]));
+    EXPECT_EQ(a.x[2], -100.0f);
+    EXPECT_EQ(a.intensity[0], 0.5f);
+    std::ofstream(ascii) << "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 1\nDATA ascii\n1 x 3\n";
+    try
+    {
+        (void)hif::io::readPcd(ascii);
+        FAIL() << "'x' read as a number";
+    }
+    catch (const std::exception& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("line 1 of the data: 'x' is not a number"),
+                  std::string::npos)
+            << e.what();
+    }
+    std::ofstream(ascii) << "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 1\nDATA ascii\n1 2\n";
+    EXPECT_THROW((void)hif::io::readPcd(ascii), std::runtime_error);
+
+    // A PCD with float64 x y z in UTM, as PCL writes it, with another field between.
+    const std::string binary = work.path() + "/utm.pcd";
+    {
+        std::ofstream f(binary, std::ios::binary);
+        f << "FIELDS x y z ring intensity\nSIZE 8 8 8 2 4\nTYPE F F F U F\nCOUNT 1 1 1 1 1\n"
+             "POINTS 2\nDATA binary\n";
+        const double p0[3] = {630123.4567, 5800321.1234, 251.0009};
+        const double p1[3] = {630124.0001, 5800322.0002, 250.5};
+        for (const double* p : {p0, p1})
+        {
+            f.write(reinterpret_cast<const char*>(p), 24);
+            const uint16_t ring = 7;
+            const float intensity = 0.25f;
+            f.write(reinterpret_cast<const char*>(&ring), 2);
+            f.write(reinterpret_cast<const char*>(&intensity), 4);
+        }
+    }
+    const hif::io::PcdCloud u = hif::io::readPcd(binary);
+    ASSERT_EQ(u.size(), 2u);
+    EXPECT_FALSE(u.has_viewpoint);
+    EXPECT_NEAR(u.point(0).x(), 630123.4567, 1e-6);
+    EXPECT_NEAR(u.point(0).y(), 5800321.1234, 1e-6);
+    EXPECT_NEAR(u.point(1).x(), 630124.0001, 1e-6);
+    EXPECT_NEAR(u.point(1).z(), 250.5, 1e-6);
+    EXPECT_EQ(u.intensity[1], 0.25f);
+}
+
+TEST(CloudWriter, CoordinatesWidenToFloat64WhereFloat32WouldLoseMillimetres)
+{
+    const auto work = scratch("widen");
+    const std::string d = work.path();
+    for (const bool expect : {false, true})
+    {
+        const std::vector<std::string> files{d + "/a.ply", d + "/b.pcd"};
+        std::vector<Eigen::Vector3d> pts;
+        for (int i = 0; i < 20000; ++i)  // enough to fill the writer's buffer before the switch
+            pts.emplace_back(0.001 * i, -2.5, 1.25);
+        pts.emplace_back(630000.123, 5800000.456, 250.789);  // UTM: float32 steps 0.25-0.5 m
+        pts.emplace_back(1.0, 2.0, 3.0);
+        {
+            hif::io::CloudWriter w(files);
+            if (expect) w.expectCount(pts.size());
+            for (std::size_t i = 0; i < pts.size(); ++i)
+                w.add(pts[i].x(), pts[i].y(), pts[i].z(), float(i % 7));
+            EXPECT_TRUE(w.doubleCoordinates());
+            w.close();
+        }
+        // Both files hold the same records behind their headers: x y z float64, intensity.
+        for (const std::string& file : files)
+        {
+            std::ifstream in(file, std::ios::binary);
+            const std::string text((std::istreambuf_iterator<char>(in)), {});
+            const std::string end = file == files[0] ? "end_header\n" : "DATA binary\n";
+            EXPECT_NE(text.find(file == files[0] ? "property double x\nproperty double y\n"
+                                                   "property double z\nproperty float intensity\n"
+                                                 : "SIZE 8 8 8 4\n"),
+                      std::string::npos)
+                << file;
+            const auto body = text.find(end) + end.size();
+            ASSERT_EQ(text.size() - body, pts.size() * 28) << file;
+            for (std::size_t i = 0; i < pts.size(); ++i)
+            {
+                double xyz[3];
+                float intensity = 0;
+                std::memcpy(xyz, text.data() + body + i * 28, 24);
+                std::memcpy(&intensity, text.data() + body + i * 28 + 24, 4);
+                // The points before the switch were float32: exactly what float32 held.
+                const Eigen::Vector3d want =
+                    i + 2 < pts.size() ? pts[i].cast<float>().cast<double>() : pts[i];
+                ASSERT_EQ(Eigen::Vector3d(xyz[0], xyz[1], xyz[2]), want) << file << " point " << i;
+                ASSERT_EQ(intensity, float(i % 7));
+            }
+        }
+        // Read back, a UTM cloud keeps its millimetres (offsets from its first point).
+        const hif::io::PcdCloud back = hif::io::readPcd(files[1]);
+        EXPECT_NEAR(back.point(pts.size() - 1).x(), 1.0, 1e-4);
+        EXPECT_NEAR(back.point(0).y(), -2.5, 1e-4);
+    }
+    // Below the limit nothing changes: float32, as before.
+    hif::io::CloudWriter w({d + "/small.pcd"});
+    w.add(8191.0, -8191.0, 100.0, 1.0f);
+    w.close();
+    EXPECT_FALSE(w.doubleCoordinates());
+    std::ifstream small(d + "/small.pcd");
+    const std::string text((std::istreambuf_iterator<char>(small)), {});
+    EXPECT_NE(text.find("SIZE 4 4 4 4"), std::string::npos);
+}
