@@ -16,6 +16,7 @@
 #include "app_runner.h"
 #include "hif/io/CloudFiles.h"
 #include "hif/io/Labels.h"
+#include "synthetic_suite.h"
 
 namespace fs = std::filesystem;
 using hif::test::bytesOf;
@@ -29,47 +30,11 @@ using hif::test::workDir;
 namespace
 {
 /** A short synthetic sequence, converted, in a fresh folder. */
-class BadInput : public ::testing::Test
+class BadInput : public hif::test::SyntheticSuite<BadInput>
 {
-protected:
-    static void SetUpTestSuite()
-    {
-        work_ =
-            std::make_unique<WorkDir>(hif::test::kWork + "/bad_input_" + std::to_string(getpid()));
-        root_ = work_->path();
-        const auto g = runApp("hif-synthetic-kitti", "-o " + root_ + "/seq -n 6");
-        const auto c =
-            g.code == 0 ? runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + root_ + "/all.rawlog")
-                        : g;
-        setup_ok_ = g.code == 0 && c.code == 0;
-        setup_log_ = g.output + c.output;
-    }
-    void SetUp() override { ASSERT_TRUE(setup_ok_) << setup_log_; }
-    // The folder goes unless a test failed.
-    static void TearDownTestSuite() { work_.reset(); }
-
-    /** The shipped kitti.ini with `from` replaced by `to`, written to a file of the test. */
-    static std::string ini(const std::string& from, const std::string& to)
-    {
-        std::ifstream in(HIF_SHARE_DIR "/config/kitti.ini");
-        std::stringstream ss;
-        ss << in.rdbuf();
-        std::string text = ss.str();
-        const auto at = text.find(from);
-        EXPECT_NE(at, std::string::npos) << from;
-        text.replace(at, from.size(), to);
-        const std::string file = root_ + "/bad.ini";
-        std::ofstream(file) << text;
-        return file;
-    }
-
-    static std::unique_ptr<WorkDir> work_;
-    static std::string root_, setup_log_;
-    static bool setup_ok_;
+public:
+    static constexpr const char* kFolder = "bad_input";
 };
-std::unique_ptr<WorkDir> BadInput::work_;
-std::string BadInput::root_, BadInput::setup_log_;
-bool BadInput::setup_ok_ = false;
 }  // namespace
 
 TEST_F(BadInput, IniMistakesNameTheKeySectionAndFile)

@@ -35,55 +35,22 @@
 #include "hif/io/CloudFiles.h"
 #include "hif/io/KittiSequence.h"
 #include "kitti_fixture.h"
+#include "synthetic_suite.h"
 
 extern char** environ;
 
 namespace fs = std::filesystem;
-using hif::test::bytesOf;
-using hif::test::expectError;
-using hif::test::readJson;
-using hif::test::Result;
-using hif::test::runApp;
-using hif::test::WorkDir;
-using hif::test::workDir;
+// The app runner's helpers (runApp, expectError, readJson, bytesOf, WorkDir, ...).
+using namespace hif::test;  // NOLINT(google-build-using-namespace)
 
 namespace
 {
 /** A short synthetic sequence and its rawlog, shared by the tests of the suite. */
-class NothingLost : public ::testing::Test
+class NothingLost : public SyntheticSuite<NothingLost>
 {
-protected:
-    static void SetUpTestSuite()
-    {
-        work_ = std::make_unique<WorkDir>(hif::test::kWork + "/nothing_lost_" +
-                                          std::to_string(getpid()));
-        root_ = work_->path();
-        const auto g = runApp("hif-synthetic-kitti", "-o " + root_ + "/seq -n 6");
-        const auto c =
-            g.code == 0 ? runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + root_ + "/all.rawlog")
-                        : g;
-        setup_ok_ = g.code == 0 && c.code == 0;
-        setup_log_ = g.output + c.output;
-    }
-    void SetUp() override { ASSERT_TRUE(setup_ok_) << setup_log_; }
-    static void TearDownTestSuite() { work_.reset(); }
-
-    /** A copy of the sequence, in a fresh folder `name` of the suite. */
-    static std::string copyOfSequence(const std::string& name)
-    {
-        const std::string d = root_ + "/" + name;
-        fs::remove_all(d);
-        fs::copy(root_ + "/seq", d, fs::copy_options::recursive);
-        return d;
-    }
-
-    static std::unique_ptr<WorkDir> work_;
-    static std::string root_, setup_log_;
-    static bool setup_ok_;
+public:
+    static constexpr const char* kFolder = "nothing_lost";
 };
-std::unique_ptr<WorkDir> NothingLost::work_;
-std::string NothingLost::root_, NothingLost::setup_log_;
-bool NothingLost::setup_ok_ = false;
 
 /** An app started in the background, its stdout and stderr into `log`. */
 pid_t spawnApp(const std::string& app, const std::vector<std::string>& args, const std::string& log)
@@ -435,14 +402,9 @@ TEST(Georeferenced, AShiftedRealClipGivesTheSameClassesAndItsPointsPlusTheShift)
 TEST_F(NothingLost, AGridOriginOrAPoseOffTheGridIsRefused)
 {
     // An origin whose pillar index overflows would leave every point outside the grid.
-    std::ifstream in(HIF_SHARE_DIR "/config/kitti.ini");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    std::string text = ss.str();
-    text.replace(text.find("origin_x=0.0"), 12, "origin_x=3e9");
-    std::ofstream(root_ + "/far_origin.ini") << text;
+    const std::string far_origin = ini("origin_x=0.0", "origin_x=3e9", "far_origin.ini");
     expectError(runApp("hif-clean", "-i " + root_ + "/all.rawlog -o " + root_ +
-                                        "/far_origin -q -c " + root_ + "/far_origin.ini"),
+                                        "/far_origin -q -c " + far_origin),
                 "invalid origin_x = 3e+09 (must be such that |origin_x| / pillar_size < 2^31");
     // A pose 3e9 m away: its scan's points lie outside the grid, and the run says which.
     shiftedSequence(root_ + "/seq", root_ + "/far_pose", Eigen::Vector3d(3e9, 0, 0));
@@ -713,13 +675,7 @@ TEST_F(NothingLost, MessagesNameWhatIsWrong)
     // Map counts a handful at most, and whole numbers.
     for (const std::string count : {"1000000", "-1", "one"})
     {
-        std::ifstream ini(HIF_SHARE_DIR "/config/kitti.ini");
-        std::stringstream ss;
-        ss << ini.rdbuf();
-        std::string text = ss.str();
-        text.replace(text.find("CHeightIntervalMap_count=1"), 26,
-                     "CHeightIntervalMap_count=" + count);
-        std::ofstream(root_ + "/count.ini") << text;
+        ini("CHeightIntervalMap_count=1", "CHeightIntervalMap_count=" + count, "count.ini");
         expectError(runApp("hif-clean", in + "-o " + root_ + "/m -c " + root_ + "/count.ini"),
                     "count.ini', [map]: CHeightIntervalMap_count = '" + count +
                         "' is not a whole number in [0, 16]");

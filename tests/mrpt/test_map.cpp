@@ -236,6 +236,50 @@ TEST(CHeightIntervalMap, VisualizationHasOneBoxPerInterval)
     EXPECT_EQ(tris->getTrianglesCount(), 3u * 12u);
 }
 
+TEST(CHeightIntervalMap, AMapInUtmCoordinatesIsDrawnAndListedToTheMillimetre)
+{
+    // Scans taken at UTM-like poses: the points themselves are small, in the sensor frame.
+    CHeightIntervalMap map;
+    const CPose3D at(630000.0, 5800000.0, 250.0, 0, 0, 0);
+    ASSERT_TRUE(map.insertObservation(*cloud({{0.5, 0.5, 0.0}, {3.5, 1.5, 2.0}}), at));
+    mrpt::opengl::CSetOfObjects objs;
+    map.getVisualizationInto(objs);
+    auto tris = objs.getByClass<mrpt::opengl::CSetOfTriangles>();
+    ASSERT_TRUE(tris);
+    // Placed by a double pose at the map's corner, its float vertices small and exact.
+    EXPECT_DOUBLE_EQ(tris->getPoseX(), 630000.0);
+    EXPECT_DOUBLE_EQ(tris->getPoseY(), 5800000.0);
+    mrpt::opengl::TTriangle t0;
+    tris->getTriangle(0, t0);
+    for (int k = 0; k < 3; ++k)
+    {
+        EXPECT_LT(std::abs(t0.x(k)), 10.0f);
+        EXPECT_LT(std::abs(t0.y(k)), 10.0f);
+    }
+    const std::string prefix = mrpt::system::getTempFileName();
+    map.saveMetricMapRepresentationToFile(prefix);
+    std::ifstream f(prefix + "_intervals.txt");
+    std::string header;
+    std::getline(f, header);
+    double x0 = 0, y0 = 0, x1 = 0, y1 = 0, zb = 0;
+    ASSERT_TRUE(f >> x0 >> y0 >> x1 >> y1 >> zb);
+    EXPECT_DOUBLE_EQ(x0, 630000.0);
+    EXPECT_DOUBLE_EQ(y0, 5800000.0);
+    EXPECT_DOUBLE_EQ(y1, 5800001.0);
+    EXPECT_NEAR(zb, 250.0, 0.051);
+    // A map near the origin is drawn as before: at the identity, in world coordinates.
+    CHeightIntervalMap local;
+    ASSERT_TRUE(local.insertObservation(*cloud({{0.5, 0.5, 0.0}, {3.5, 1.5, 2.0}})));
+    // The likelihood is the same there as here: y = 5800000.8 is 5800001 in float32, the next
+    // pillar.
+    const auto probe = cloud({{0.5, 0.8, 0.0}, {3.5, 1.5, 2.0}});
+    EXPECT_DOUBLE_EQ(map.computeObservationLikelihood(*probe, at),
+                     local.computeObservationLikelihood(*probe, CPose3D()));
+    mrpt::opengl::CSetOfObjects near;
+    local.getVisualizationInto(near);
+    EXPECT_DOUBLE_EQ(near.getByClass<mrpt::opengl::CSetOfTriangles>()->getPoseX(), 0.0);
+}
+
 TEST(CHeightIntervalMap, SavesTextAndSceneRepresentation)
 {
     CHeightIntervalMap map;

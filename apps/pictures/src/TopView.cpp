@@ -101,11 +101,29 @@ void TopView::cover(double x0, double y0, double x1, double y1, int pixels)
     inv_res_ = 1.0 / res_;
 }
 
+void TopView::addToTile(double fx, double fy, float z, Outcome outcome)
+{
+    if (!(fx > -kMaxCell && fx < kMaxCell && fy > -kMaxCell && fy < kMaxCell))
+    {
+        far_ += (fx == fx && fy == fy) ? 1 : 0;  // NaN: not a point, not counted
+        return;
+    }
+    const auto cx = static_cast<int64_t>(std::floor(fx)), cy = static_cast<int64_t>(std::floor(fy));
+    Tile* t = findOrAdd(cx >> kTileBits, cy >> kTileBits);
+    if (t == nullptr)  // the cells grew: again, at their new size
+    {
+        addToTile(fx * 0.5, fy * 0.5, z, outcome);
+        return;
+    }
+    mark(*t, static_cast<std::size_t>(((cy & kTileMask) << kTileBits) | (cx & kTileMask)), z,
+         outcome);
+}
+
 TopView::Tile* TopView::findOrAdd(int64_t tx, int64_t ty)
 {
     const uint64_t key = packBlock(tx, ty);
     const auto it = index_.find(key);
-    if (it != index_.end()) return last_ = &tiles_[it->second];
+    if (it != index_.end()) return setLast(&tiles_[it->second]);
     if ((tiles_.size() + 1) * kTileCells > max_cells_ && !tiles_.empty())
     {
         coarsen();
@@ -118,7 +136,7 @@ TopView::Tile* TopView::findOrAdd(int64_t tx, int64_t ty)
     t.marks.assign(kTileCells, 0);
     index_.emplace(key, tiles_.size());
     tiles_.push_back(std::move(t));
-    return last_ = &tiles_.back();
+    return setLast(&tiles_.back());
 }
 
 void TopView::coarsen()
@@ -126,7 +144,7 @@ void TopView::coarsen()
     std::vector<Tile> old = std::move(tiles_);
     tiles_.clear();
     index_.clear();
-    last_ = nullptr;
+    setLast(nullptr);
     res_ *= 2;
     inv_res_ = 1.0 / res_;
     const std::size_t max_cells = max_cells_;
@@ -153,6 +171,23 @@ void TopView::coarsen()
     if (tiles_.size() * kTileCells > max_cells_) coarsen();
 }
 
+template <typename Fn>
+void TopView::forEachCell(const std::vector<bool>& in, Fn&& fn) const
+{
+    for (std::size_t k = 0; k < tiles_.size(); ++k)
+    {
+        if (!in[k]) continue;
+        const Tile& t = tiles_[k];
+        for (int64_t ly = 0; ly < kTileSide; ++ly)
+            for (int64_t lx = 0; lx < kTileSide; ++lx)
+            {
+                const auto i = static_cast<std::size_t>((ly << kTileBits) | lx);
+                if (std::isnan(t.top[i]) && t.marks[i] == 0) continue;
+                fn(t, i, (t.tx << kTileBits) | lx, (t.ty << kTileBits) | ly);
+            }
+    }
+}
+
 TopView::Picture TopView::write(const std::string& file, const std::string& title, bool with_truth,
                                 int min_width) const
 {
@@ -175,22 +210,14 @@ TopView::Picture TopView::write(const std::string& file, const std::string& titl
     // The cells that hold something, in the main area.
     int64_t c0 = std::numeric_limits<int64_t>::max(), c1 = std::numeric_limits<int64_t>::min();
     int64_t r0 = c0, r1 = c1;
-    for (std::size_t k = 0; k < tiles_.size(); ++k)
-    {
-        if (!in[k]) continue;
-        const Tile& t = tiles_[k];
-        for (int64_t ly = 0; ly < kTileSide; ++ly)
-            for (int64_t lx = 0; lx < kTileSide; ++lx)
-            {
-                const auto i = static_cast<std::size_t>((ly << kTileBits) | lx);
-                if (std::isnan(t.top[i]) && t.marks[i] == 0) continue;
-                const int64_t cx = (t.tx << kTileBits) | lx, cy = (t.ty << kTileBits) | ly;
-                c0 = std::min(c0, cx);
-                c1 = std::max(c1, cx + 1);
-                r0 = std::min(r0, cy);
-                r1 = std::max(r1, cy + 1);
-            }
-    }
+    forEachCell(in,
+                [&](const Tile&, std::size_t, int64_t cx, int64_t cy)
+                {
+                    c0 = std::min(c0, cx);
+                    c1 = std::max(c1, cx + 1);
+                    r0 = std::min(r0, cy);
+                    r1 = std::max(r1, cy + 1);
+                });
     // At most kMaxSide cells a side, and 2^24 in all: a larger area is drawn coarser (each
     // picture cell the highest kept point and every outcome of the f x f cells it covers).
     int64_t f = 1;
@@ -201,22 +228,14 @@ TopView::Picture TopView::write(const std::string& file, const std::string& titl
     const int w = int(cells(c1 - c0, f)), h = int(cells(r1 - r0, f));
     std::vector<float> top(std::size_t(w) * std::size_t(h), kNone);
     std::vector<uint8_t> marks(top.size(), 0);
-    for (std::size_t k = 0; k < tiles_.size(); ++k)
-    {
-        if (!in[k]) continue;
-        const Tile& t = tiles_[k];
-        for (int64_t ly = 0; ly < kTileSide; ++ly)
-            for (int64_t lx = 0; lx < kTileSide; ++lx)
-            {
-                const auto i = static_cast<std::size_t>((ly << kTileBits) | lx);
-                if (std::isnan(t.top[i]) && t.marks[i] == 0) continue;
-                const int64_t cx = (t.tx << kTileBits) | lx, cy = (t.ty << kTileBits) | ly;
-                const auto j =
-                    std::size_t((cy - r0) / f) * std::size_t(w) + std::size_t((cx - c0) / f);
-                if (!std::isnan(t.top[i]) && !(t.top[i] <= top[j])) top[j] = t.top[i];
-                marks[j] |= t.marks[i];
-            }
-    }
+    forEachCell(in,
+                [&](const Tile& t, std::size_t i, int64_t cx, int64_t cy)
+                {
+                    const auto j =
+                        std::size_t((cy - r0) / f) * std::size_t(w) + std::size_t((cx - c0) / f);
+                    if (!std::isnan(t.top[i]) && !(t.top[i] <= top[j])) top[j] = t.top[i];
+                    marks[j] |= t.marks[i];
+                });
     std::vector<float> tops;
     for (const float z : top)
         if (!std::isnan(z)) tops.push_back(z);

@@ -131,6 +131,7 @@ void CHeightIntervalMap::saveMetricMapRepresentationToFile(const std::string& pr
     std::ofstream f(txt);
     if (!f) THROW_EXCEPTION_FMT("Error writing to target file '%s'", txt.c_str());
     f << "# x_min y_min x_max y_max z_bottom z_top p_static\n";
+    f.precision(12);  // world coordinates in the millions of metres (UTM) keep their millimetres
     for (const auto& [idx, pillar] : grid_.sortedPillars())
     {
         const double x0 = g.origin_x + idx.m * g.pillar_size;

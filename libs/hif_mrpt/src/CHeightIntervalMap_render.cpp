@@ -22,10 +22,37 @@ void CHeightIntervalMap::getVisualizationInto(mrpt::opengl::CSetOfObjects& o) co
     auto tris = mrpt::opengl::CSetOfTriangles::Create();
     tris->setName("hif::CHeightIntervalMap");
     const double inset = 0.05 * g.pillar_size;  // a small gap shows pillar borders
-    for (const auto& [idx, pillar] : grid_.sortedPillars())
+    const auto pillars = grid_.sortedPillars();
+    // Triangles hold float32 vertices, which keep millimetres only below about 8 km: a map in
+    // world coordinates (UTM) is drawn from its south-west corner, placed by the object's (double)
+    // pose.
+    constexpr double kFloatLimit = 8192.0;
+    double ax = 0, ay = 0;
+    if (!pillars.empty())
     {
-        const float x0 = static_cast<float>(g.origin_x + idx.m * g.pillar_size + inset);
-        const float y0 = static_cast<float>(g.origin_y + idx.n * g.pillar_size + inset);
+        int32_t m0 = pillars.front().first.m, m1 = m0, n0 = pillars.front().first.n, n1 = n0;
+        for (const auto& [idx, pillar] : pillars)
+        {
+            m0 = std::min(m0, idx.m);
+            m1 = std::max(m1, idx.m);
+            n0 = std::min(n0, idx.n);
+            n1 = std::max(n1, idx.n);
+        }
+        const double far = std::max({std::abs(g.origin_x + m0 * g.pillar_size),
+                                     std::abs(g.origin_x + (m1 + 1.0) * g.pillar_size),
+                                     std::abs(g.origin_y + n0 * g.pillar_size),
+                                     std::abs(g.origin_y + (n1 + 1.0) * g.pillar_size)});
+        if (far >= kFloatLimit)
+        {
+            ax = g.origin_x + m0 * g.pillar_size;
+            ay = g.origin_y + n0 * g.pillar_size;
+            tris->setLocation(ax, ay, 0.0);
+        }
+    }
+    for (const auto& [idx, pillar] : pillars)
+    {
+        const float x0 = static_cast<float>(g.origin_x + idx.m * g.pillar_size - ax + inset);
+        const float y0 = static_cast<float>(g.origin_y + idx.n * g.pillar_size - ay + inset);
         const float x1 = static_cast<float>(x0 + g.pillar_size - 2 * inset);
         const float y1 = static_cast<float>(y0 + g.pillar_size - 2 * inset);
         for (const Interval& iv : pillar->intervals)

@@ -9,8 +9,10 @@
  */
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -67,25 +69,17 @@ public:
     void add(double x, double y, float z, Outcome outcome)
     {
         const double fx = x * inv_res_, fy = y * inv_res_;
-        if (!(fx > -kMaxCell && fx < kMaxCell && fy > -kMaxCell && fy < kMaxCell))
+        // Most points fall in the tile of the one before (a scan is swept in order).
+        const double dx = fx - last_x0_, dy = fy - last_y0_;
+        if (dx >= 0 && dx < double(kTileSide) && dy >= 0 && dy < double(kTileSide))
         {
-            far_ += (fx == fx && fy == fy) ? 1 : 0;  // NaN: not a point, not counted
+            // The offsets are exact but near the tile's far edge (then the last cell).
+            const auto lx = std::min<std::size_t>(static_cast<std::size_t>(dx), kTileSide - 1);
+            const auto ly = std::min<std::size_t>(static_cast<std::size_t>(dy), kTileSide - 1);
+            mark(*last_, (ly << kTileBits) | lx, z, outcome);
             return;
         }
-        const auto cx = static_cast<int64_t>(fx) - (fx < 0 && fx != double(int64_t(fx)));
-        const auto cy = static_cast<int64_t>(fy) - (fy < 0 && fy != double(int64_t(fy)));
-        Tile* tp = tile(cx >> kTileBits, cy >> kTileBits);
-        if (tp == nullptr) return add(x, y, z, outcome);  // the cells grew: again, at their size
-        Tile& t = *tp;
-        const std::size_t i =
-            static_cast<std::size_t>(((cy & kTileMask) << kTileBits) | (cx & kTileMask));
-        if (outcome == kKept)
-        {
-            if (!(z <= t.top[i])) t.top[i] = z;  // top starts NaN
-        }
-        else
-            t.marks[i] |= static_cast<uint8_t>(1u << outcome);
-        ++t.points;
+        addToTile(fx, fy, z, outcome);
     }
 
     /** The picture as written. */
@@ -125,13 +119,32 @@ private:
         std::size_t points = 0;
     };
 
-    /** The tile, made if needed; nullptr if making it coarsened the cells instead. */
-    Tile* tile(int64_t tx, int64_t ty)
+    static void mark(Tile& t, std::size_t i, float z, Outcome outcome)
     {
-        if (last_ != nullptr && last_->tx == tx && last_->ty == ty) return last_;
-        return findOrAdd(tx, ty);
+        if (outcome == kKept)
+        {
+            if (!(z <= t.top[i])) t.top[i] = z;  // top starts NaN
+        }
+        else
+            t.marks[i] |= static_cast<uint8_t>(1u << outcome);
+        ++t.points;
     }
+    /** add() for a point outside the last tile: finds or makes its tile (cell (floor(fx),
+     *  floor(fy))), which becomes the last one. */
+    void addToTile(double fx, double fy, float z, Outcome outcome);
+    /** The tile, made if needed; nullptr if making it coarsened the cells instead. */
     Tile* findOrAdd(int64_t tx, int64_t ty);
+    Tile* setLast(Tile* t)
+    {
+        last_ = t;
+        last_x0_ = t ? double(t->tx * kTileSide) : std::numeric_limits<double>::quiet_NaN();
+        last_y0_ = t ? double(t->ty * kTileSide) : std::numeric_limits<double>::quiet_NaN();
+        return t;
+    }
+    /** fn(tile, cell index in it, global cell x, y) for each cell that holds something, in
+     *  the tiles flagged in `in`. */
+    template <typename Fn>
+    void forEachCell(const std::vector<bool>& in, Fn&& fn) const;
     /** Twice the cell size: every 2 x 2 cells become one. */
     void coarsen();
 
@@ -140,6 +153,9 @@ private:
     std::vector<Tile> tiles_;
     std::unordered_map<uint64_t, std::size_t> index_;  ///< packed (tx, ty) -> tiles_ index
     Tile* last_ = nullptr;
+    /** The last tile's first cell (in cells, as doubles); NaN while there is none. */
+    double last_x0_ = std::numeric_limits<double>::quiet_NaN();
+    double last_y0_ = std::numeric_limits<double>::quiet_NaN();
     std::size_t far_ = 0;
 };
 
