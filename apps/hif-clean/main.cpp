@@ -13,6 +13,7 @@
 
 #include <malloc.h>
 
+#include <cmath>
 #include <deque>
 #include <filesystem>
 #include <fstream>
@@ -256,6 +257,21 @@ void printHeader(const Run& run)
         std::cout << kTag << " warning: " << w << "\n";
 }
 
+/** Refuses a scan whose pose is not finite (NaN or inf in a rawlog's pose): every point of it
+ *  would be invalid, and the scan silently lost. */
+void checkPose(const Run& run, const hif::apps::Scan& scan, std::size_t k)
+{
+    const auto& p = scan.robot_pose;
+    for (const double v : {p.x(), p.y(), p.z(), p.yaw(), p.pitch(), p.roll()})
+        if (!std::isfinite(v))
+        {
+            std::ostringstream msg;
+            msg << "scan " << k << " of '" << run.input << "' has a pose that is not finite ("
+                << p.asString() << ")";
+            throw std::runtime_error(msg.str());
+        }
+}
+
 /** Refuses a scan with points outside the map's grid (a pose or an origin far off): they could
  *  be neither kept nor judged. */
 void checkInsideGrid(const Run& run, std::size_t scan)
@@ -290,6 +306,7 @@ std::vector<hif::apps::Scan> insertAll(Run& run, Outputs& out, Timings& t)
     while (run.source->next(scan))
     {
         scan.obs->load();
+        checkPose(run, scan, t.scans);
         const auto t0 = Clock::now();
         run.maps.insertObservation(*scan.obs, scan.robot_pose);
         const double ms = msSince(t0);

@@ -219,6 +219,10 @@ int run(Cli& cli)
         if (!dir.empty() && !fs::is_directory(dir))
             throw std::runtime_error(std::string(what) + " folder '" + dir +
                                      (fs::exists(dir) ? "' is not a folder" : "' does not exist"));
+    std::error_code same_ec;
+    if (fs::equivalent(pred_dir, label_dir, same_ec))
+        throw std::runtime_error("--labels and --predictions are the same folder '" + label_dir +
+                                 "': the labels would be scored against themselves");
     const double ego_radius = cli.ego_radius.getValue();
     if (!(ego_radius >= 0.0))
         throw std::runtime_error("--ego-radius must be >= 0, not " + std::to_string(ego_radius));

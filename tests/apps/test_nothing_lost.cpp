@@ -11,6 +11,7 @@
 #include <mrpt/io/CFileOutputStream.h>
 #include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/obs/CObservationPointCloud.h>
+#include <mrpt/obs/CObservationRobotPose.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include <fcntl.h>
@@ -672,6 +673,27 @@ TEST_F(NothingLost, MessagesNameWhatIsWrong)
                                         "/no/such/folder/clean.rawlog"),
                 "--rawlog-out '" + root_ + "/no/such/folder/clean.rawlog': the folder '" + root_ +
                     "/no/such/folder' does not exist");
+    // A rawlog pose that is not finite: the scan would be lost, point by point.
+    {
+        mrpt::io::CFileOutputStream f(root_ + "/nan_pose.rawlog");
+        auto arch = mrpt::serialization::archiveFrom(f);
+        for (int s = 0; s < 2; ++s)
+        {
+            auto pose = mrpt::obs::CObservationRobotPose::Create();
+            pose->pose.mean = mrpt::poses::CPose3D(s == 1 ? std::nan("") : 0.0, 0, 0, 0, 0, 0);
+            auto pts = mrpt::maps::CSimplePointsMap::Create();
+            for (float x = 2; x < 10; x += 0.5f) pts->insertPoint(x, 0.0f, -1.7f);
+            auto obs = mrpt::obs::CObservationPointCloud::Create();
+            obs->pointcloud = pts;
+            arch << *pose << *obs;
+        }
+    }
+    expectError(runApp("hif-clean", "-i " + root_ + "/nan_pose.rawlog -o " + root_ + "/m -q"),
+                "scan 1 of '" + root_ + "/nan_pose.rawlog' has a pose that is not finite");
+    // hif-eval with one folder for the labels and the predictions scores nothing real.
+    expectError(runApp("hif-eval", "--labels " + root_ + "/seq/labels --predictions " + root_ +
+                                       "/seq/labels/ -q"),
+                "--labels and --predictions are the same folder");
     // Map counts a handful at most, and whole numbers.
     for (const std::string count : {"1000000", "-1", "one"})
     {
