@@ -159,8 +159,8 @@ void TopView::coarsen()
             {
                 const auto i = static_cast<std::size_t>((ly << kTileBits) | lx);
                 if (std::isnan(o.top[i]) && o.marks[i] == 0) continue;
-                const int64_t cx = ((o.tx << kTileBits) | lx) >> 1;
-                const int64_t cy = ((o.ty << kTileBits) | ly) >> 1;
+                const int64_t cx = (o.tx * kTileSide + lx) >> 1;
+                const int64_t cy = (o.ty * kTileSide + ly) >> 1;
                 const auto j =
                     static_cast<std::size_t>(((cy & kTileMask) << kTileBits) | (cx & kTileMask));
                 if (!std::isnan(o.top[i]) && !(o.top[i] <= t.top[j])) t.top[j] = o.top[i];
@@ -183,7 +183,7 @@ void TopView::forEachCell(const std::vector<bool>& in, Fn&& fn) const
             {
                 const auto i = static_cast<std::size_t>((ly << kTileBits) | lx);
                 if (std::isnan(t.top[i]) && t.marks[i] == 0) continue;
-                fn(t, i, (t.tx << kTileBits) | lx, (t.ty << kTileBits) | ly);
+                fn(t, i, t.tx * kTileSide + lx, t.ty * kTileSide + ly);
             }
     }
 }
