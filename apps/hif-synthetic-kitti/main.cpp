@@ -3,7 +3,8 @@
  * @file   hif-synthetic-kitti/main.cpp
  * @brief  Writes a synthetic LiDAR sequence in the SemanticKITTI layout, with exact labels: a
  *         street with sloping ground, buildings, trees and parked cars, cars and people that
- *         move, seen by a 64-beam scanner model (ray casting, so occlusion is real).
+ *         move, seen by a LiDAR model (a 64-beam scanner by default, or another of Sensor.h;
+ *         ray casting, so occlusion is real).
  */
 #include <mrpt/3rdparty/tclap/CmdLine.h>
 
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "Scene.h"
+#include "Sensor.h"
 #include "hif/apps/Cli.h"
 #include "hif/apps/Staged.h"
 #include "hif/io/KittiSequence.h"
@@ -37,8 +39,9 @@ struct Cli
     TCLAP::CmdLine cmd{
         "hif-synthetic-kitti: writes a synthetic LiDAR sequence in the SemanticKITTI layout "
         "(velodyne/NNNNNN.bin, labels/NNNNNN.label, poses.txt, calib.txt, times.txt) with exact "
-        "labels: a 64-beam scanner (+2 to -24.8 degrees, 1024 columns, 80 m) moving down a "
-        "sloping street with buildings, trees and parked cars. Scene 'street': driving at 8 m/s "
+        "labels: a LiDAR (--sensor; by default a 64-beam scanner, +2 to -24.8 degrees, 1024 "
+        "columns, 80 m) moving down a sloping street with buildings, trees and parked cars. Scene "
+        "'street': driving at 8 m/s "
         "while cars (class 252) and people (254) move; scene 'walkers': only people walk, in "
         "groups, along the sidewalks and across the road; scene 'cyclists': only cyclists (253) "
         "ride, along the road and across it.",
@@ -64,6 +67,15 @@ struct Cli
         "",    "groups", "Walkers and cyclists scenes: groups of people or cyclists (default: 6)",
         false, 6,        "N",
         cmd};
+    TCLAP::ValueArg<std::string> sensor{"",
+                                        "sensor",
+                                        "The LiDAR: hdl-64e (default, KITTI's), hdl-32e, vlp-16, "
+                                        "os1-128 or mid-70 (a Livox-style rosette, 70 degrees "
+                                        "ahead)",
+                                        false,
+                                        "hdl-64e",
+                                        "name",
+                                        cmd};
     TCLAP::SwitchArg overwrite{"", "overwrite", "Replace an existing sequence folder", cmd};
 };
 
@@ -83,6 +95,7 @@ int run(Cli& cli)
     if (!(ego_speed >= 0.0 && ego_speed <= 60.0))
         throw std::runtime_error("--ego-speed " + std::to_string(ego_speed) +
                                  " is not in [0, 60] m/s");
+    const Sensor& sensor = sensorNamed(cli.sensor.getValue());
     if (cli.groups.getValue() < 0 || cli.groups.getValue() > 100)
         throw std::runtime_error("--groups " + std::to_string(cli.groups.getValue()) +
                                  " is not in [0, 100]");
@@ -122,9 +135,8 @@ int run(Cli& cli)
     std::ofstream calib(out + "/calib.txt"), poses(out + "/poses.txt"), times(out + "/times.txt");
     calib << "Tr: " << row34(Tr) << "\n";
 
-    constexpr int kBeams = 64, kColumns = 1024;
-    constexpr double kMaxRange = 80.0;
     hif::apps::Progress progress(tag, "rendering", n);
+    std::vector<Eigen::Vector3d> beams;
     std::size_t total_points = 0, moving_points = 0;
     for (std::size_t i = 0; i < n; ++i)
     {
@@ -139,24 +151,18 @@ int run(Cli& cli)
         std::vector<float> pts;
         std::vector<uint32_t> labels;
         const Eigen::Vector3d o = T_world_velo.translation();
-        for (int b = 0; b < kBeams; ++b)
+        sensor.directions(t, kScanPeriod, beams);
+        for (const Eigen::Vector3d& d : beams)
         {
-            const double el = (2.0 - 26.8 * b / (kBeams - 1)) * M_PI / 180.0;
-            for (int c = 0; c < kColumns; ++c)
-            {
-                const double az = 2.0 * M_PI * c / kColumns;
-                const Eigen::Vector3d d(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az),
-                                        std::sin(el));
-                uint32_t instance = 0;
-                const Hit h = scene.cast(o, d, t, kMaxRange, instance);
-                if (h.label == 0) continue;  // no return
-                const double r = h.t + noise(rng);
-                const Eigen::Vector3d p = d * r;  // LiDAR frame (no rotation in this scene)
-                pts.insert(pts.end(), {float(p.x()), float(p.y()), float(p.z()),
-                                       float(0.1 + 0.01 * (h.label % 50))});
-                labels.push_back(h.label | (instance << 16));
-                moving_points += hif::io::isMovingClass(h.label) ? 1 : 0;
-            }
+            uint32_t instance = 0;
+            const Hit h = scene.cast(o, d, t, sensor.max_range, instance);
+            if (h.label == 0) continue;  // no return
+            const double r = h.t + noise(rng);
+            const Eigen::Vector3d p = d * r;  // LiDAR frame (no rotation in this scene)
+            pts.insert(pts.end(), {float(p.x()), float(p.y()), float(p.z()),
+                                   float(0.1 + 0.01 * (h.label % 50))});
+            labels.push_back(h.label | (instance << 16));
+            moving_points += hif::io::isMovingClass(h.label) ? 1 : 0;
         }
         total_points += labels.size();
         const std::string name = hif::io::frameName(i);
@@ -178,6 +184,7 @@ int run(Cli& cli)
         throw std::runtime_error("calib.txt, poses.txt or times.txt of '" + dir +
                                  "' could not be written (disk full?)");
     staged.commit();
+    std::cout << tag << " sensor " << sensor.name << ": " << sensor.description << "\n";
     std::cout << tag << " wrote " << n << " scans, " << total_points << " points (" << moving_points
               << " on moving objects) to '" << dir << "'\n";
     return 0;

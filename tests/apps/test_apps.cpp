@@ -31,6 +31,7 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "app_runner.h"
@@ -880,5 +881,67 @@ TEST(HifClean, ReadsSensoryFramesAnd2DAnd3DAndVelodyneScansAndWritesThemBack)
         }
         EXPECT_EQ(scans, 5u);
         EXPECT_EQ(points, s["points_kept"].get<std::size_t>());
+    }
+}
+
+TEST(HifSyntheticKitti, EachSensorScansWithItsOwnBeams)
+{
+    const WorkDir work = workDir("sensors_" + std::to_string(getpid()));
+    struct Case
+    {
+        std::string sensor;
+        int beams;  ///< distinct elevations (0: a rosette)
+        double top, bottom;
+    };
+    for (const Case& c : std::vector<Case>{{"hdl-64e", 64, 2.0, -24.8},
+                                           {"hdl-32e", 32, 10.67, -30.67},
+                                           {"vlp-16", 16, 15.0, -15.0},
+                                           {"os1-128", 128, 22.5, -22.5},
+                                           {"mid-70", 0, 0, 0}})
+    {
+        SCOPED_TRACE(c.sensor);
+        const std::string seq = work.path() + "/" + c.sensor;
+        const auto r = runApp("hif-synthetic-kitti",
+                              "-o " + seq + " -n 2 --scene walkers --sensor " + c.sensor);
+        ASSERT_EQ(r.code, 0) << r.output;
+        const hif::io::KittiSequence s(seq);
+        std::vector<hif::io::Cloud> scans{s.readScan(0), s.readScan(1)};
+        // Range noise moves a return along its beam: its elevation is the beam's. Each return
+        // lies on one of the sensor's beams (evenly spaced from top to bottom here).
+        std::set<int> hit;  // beams with a return
+        std::size_t off_beam = 0;
+        double widest = 0;  // angle off the forward axis, degrees
+        for (const auto& scan : scans)
+            for (std::size_t i = 0; i < scan.size(); ++i)
+            {
+                const double rxy = std::hypot(scan.x[i], scan.y[i]);
+                const double range = std::hypot(rxy, scan.z[i]);
+                widest = std::max(widest, std::acos(scan.x[i] / range) * 180.0 / M_PI);
+                if (c.beams == 0) continue;
+                const double el = std::atan2(scan.z[i], rxy) * 180.0 / M_PI;
+                const double step = (c.top - c.bottom) / (c.beams - 1);
+                const long b = std::lround((c.top - el) / step);
+                if (b < 0 || b >= c.beams || std::abs(c.top - double(b) * step - el) > 0.01)
+                    ++off_beam;
+                else
+                    hit.insert(int(b));
+            }
+        if (c.beams > 0)
+        {
+            EXPECT_EQ(off_beam, 0u);
+            EXPECT_GE(double(hit.size()), 0.75 * c.beams) << "most beams return something";
+            EXPECT_GT(widest, 150.0) << "a spinning sensor sees all around";
+        }
+        else
+        {
+            // The rosette: ahead only, within its 70.4-degree cone, and never the same path.
+            EXPECT_LE(widest, 35.2 + 0.5);
+            std::size_t same = 0;
+            const std::size_t n = std::min(scans[0].size(), scans[1].size());
+            for (std::size_t i = 0; i < n; ++i)
+                same += scans[0].x[i] == scans[1].x[i] && scans[0].y[i] == scans[1].y[i];
+            EXPECT_LT(same, n / 100);
+            EXPECT_GT(n, 3000u);
+        }
     }
 }

@@ -1,0 +1,112 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   Sensor.cpp
+ * @brief  The simulated sensors and their beam patterns.
+ */
+#include "Sensor.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace synth
+{
+namespace
+{
+/** `n` elevations from `top` down to `bottom`, evenly spaced (degrees). */
+std::vector<double> evenly(int n, double top, double bottom)
+{
+    std::vector<double> e;
+    for (int b = 0; b < n; ++b) e.push_back(top - (top - bottom) * b / (n - 1));
+    return e;
+}
+
+/** A spinning sensor: `beams` evenly from `top` to `bottom` degrees, `columns` a turn. */
+Sensor spinning(const char* name, const char* description, int beams, double top, double bottom,
+                int columns, double max_range)
+{
+    Sensor s;
+    s.name = name;
+    s.description = description;
+    s.elevations_deg = evenly(beams, top, bottom);
+    s.columns = columns;
+    s.max_range = max_range;
+    return s;
+}
+
+std::vector<Sensor> makeSensors()
+{
+    std::vector<Sensor> s{
+        spinning("hdl-64e", "64 beams, +2 to -24.8 degrees, 1024 columns, 80 m (KITTI's)", 64, 2.0,
+                 -24.8, 1024, 80.0),
+        spinning("hdl-32e", "32 beams, +10.67 to -30.67 degrees (1.33 apart), 1800 columns, 100 m",
+                 32, 10.67, -30.67, 1800, 100.0),
+        spinning("vlp-16", "16 beams, +15 to -15 degrees (2 apart), 1800 columns, 100 m", 16, 15.0,
+                 -15.0, 1800, 100.0),
+        spinning("os1-128", "128 beams, +22.5 to -22.5 degrees (0.35 apart), 1024 columns, 120 m",
+                 128, 22.5, -22.5, 1024, 120.0)};
+    Sensor livox;
+    livox.name = "mid-70";
+    livox.description =
+        "non-repetitive rosette, 70.4 degrees circular field of view ahead, 10,000 points a "
+        "scan, 90 m (Livox Mid-70 style)";
+    livox.rosette_points = 10000;
+    livox.rosette_fov_deg = 70.4;
+    livox.max_range = 90.0;
+    s.push_back(livox);
+    return s;
+}
+
+const std::vector<Sensor>& sensors()
+{
+    static const std::vector<Sensor> all = makeSensors();
+    return all;
+}
+}  // namespace
+
+void Sensor::directions(double t, double scan_period, std::vector<Eigen::Vector3d>& out) const
+{
+    out.clear();
+    if (rosette_points == 0)
+    {
+        for (const double el_deg : elevations_deg)
+        {
+            const double el = el_deg * M_PI / 180.0;
+            for (int c = 0; c < columns; ++c)
+            {
+                const double az = 2.0 * M_PI * c / columns;
+                out.emplace_back(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az),
+                                 std::sin(el));
+            }
+        }
+        return;
+    }
+    // Two prisms turning the opposite ways at rates whose ratio is far from any small
+    // fraction: the deflection traces petals that fill the field of view, a little further
+    // with every scan, never the same path twice.
+    constexpr double kRate1 = 2.0 * M_PI * 73.3, kRate2 = -2.0 * M_PI * 49.1;  // rad/s
+    const double half = 0.5 * rosette_fov_deg * M_PI / 180.0;
+    for (std::size_t k = 0; k < rosette_points; ++k)
+    {
+        const double tk = t + scan_period * double(k) / double(rosette_points);
+        const double u = 0.5 * half * (std::cos(kRate1 * tk) + std::cos(kRate2 * tk));
+        const double v = 0.5 * half * (std::sin(kRate1 * tk) + std::sin(kRate2 * tk));
+        // (u, v): angles off the forward axis, to the left and up.
+        out.push_back(Eigen::Vector3d(1.0, std::tan(u), std::tan(v)).normalized());
+    }
+}
+
+const Sensor& sensorNamed(const std::string& name)
+{
+    for (const Sensor& s : sensors())
+        if (s.name == name) return s;
+    throw std::runtime_error("--sensor '" + name + "' is not one of " + sensorNames());
+}
+
+std::string sensorNames()
+{
+    std::string names;
+    for (const Sensor& s : sensors()) names += (names.empty() ? "" : ", ") + s.name;
+    return names;
+}
+
+}  // namespace synth
