@@ -33,13 +33,7 @@ for sensor in $SENSORS; do
     out=$ROOT/runs/${sensor}_$scene
     "$BIN/hif-clean" -i "$seq" -o "$out" -q --overwrite --no-png "$@" > "$out.log" 2>&1 \
       || { cat "$out.log" >&2; exit 1; }
-    # hif-eval's table: "TOTAL static dynamic SA DA AA HA", then "moving-<class> n removed DA".
     "$BIN/hif-eval" --labels "$seq/labels" --predictions "$out/predictions" -q > "$out.eval"
-    awk -v sensor="$sensor" -v scene="$scene" '
-      $1 == "TOTAL" { sa = $4; da = $5; aa = $6 }
-      $1 == "moving-car" { car = $4 } $1 == "moving-bicyclist" { cyc = $4 }
-      $1 == "moving-person" { per = $4 }
-      END { printf "%-8s %-9s %7s %7s %7s %7s %7s %7s\n", sensor, scene, sa, da, aa,
-            car == "" ? "-" : car, cyc == "" ? "-" : cyc, per == "" ? "-" : per }' "$out.eval"
+    awk -v a="$sensor" -v b="$scene" -f scripts/score-line.awk "$out.eval"
   done
 done

@@ -10,6 +10,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -19,6 +20,8 @@
 
 #include "hif/io/CloudFiles.h"
 #include "hif/io/KittiSequence.h"
+#include "hif/io/Rings.h"
+#include "kitti_fixture.h"
 #include "work_dir.h"
 
 namespace fs = std::filesystem;
@@ -240,4 +243,54 @@ TEST(CloudWriter, CoordinatesWidenToFloat64WhereFloat32WouldLoseMillimetres)
     std::ifstream small(d + "/small.pcd");
     const std::string text((std::istreambuf_iterator<char>(small)), {});
     EXPECT_NE(text.find("SIZE 4 4 4 4"), std::string::npos);
+}
+
+TEST(Rings, RecoveredFromThePointOrderWithoutJitterAtTheSeam)
+{
+    // Three turns swept clockwise from +170 degrees, 0.5 degree a point: each crosses the seam
+    // at +-180 degrees once (at its 700th point), where a point jitters back across it.
+    hif::io::Cloud c;
+    const auto add = [&c](double az_deg, float z)
+    {
+        c.x.push_back(float(10 * std::cos(az_deg * M_PI / 180.0)));
+        c.y.push_back(float(10 * std::sin(az_deg * M_PI / 180.0)));
+        c.z.push_back(z);
+        c.intensity.push_back(0);
+    };
+    for (int turn = 0; turn < 3; ++turn)
+        for (int k = 0; k < 720; ++k)
+        {
+            if (k == 100 && turn == 1)
+            {
+                add(0, 0);  // a point at the axis: no azimuth, it stays in its ring
+                c.x.back() = c.y.back() = 0.0f;
+            }
+            if (k == 702)
+                add(-179.9, float(turn));  // back across the seam, once
+            else
+                add(170.0 - 0.5 * k, float(turn));
+        }
+    const auto got = hif::io::ringOfEachPoint(c);
+    ASSERT_EQ(got.size(), c.size());
+    std::vector<std::size_t> changes;
+    for (std::size_t i = 1; i < got.size(); ++i)
+        if (got[i] != got[i - 1]) changes.push_back(i);
+    // One new ring per crossing of the seam: after points 700, 720 + 1 + 700 and 1440 + 1 + 700
+    // (the axis point is in turn 1), whatever the jitter.
+    EXPECT_EQ(changes, (std::vector<std::size_t>{701, 1422, 2142}));
+    EXPECT_EQ(got.back(), 3u);
+}
+
+TEST(Rings, KittiScansHoldSixtyFourRings)
+{
+    const std::string seq = hif::test::kittiRoot() + "/sequences/04";
+    HIF_REQUIRE_KITTI_SEQUENCE(seq);
+    const hif::io::KittiSequence s(seq);
+    for (std::size_t i = 0; i < s.size(); i += 3)
+    {
+        const auto rings = hif::io::ringOfEachPoint(s.readScan(i));
+        // 64 lasers; the scan starts mid-ring, which splits one in two.
+        EXPECT_EQ(rings.back() + 1, 65u) << "scan " << i;
+        EXPECT_TRUE(std::is_sorted(rings.begin(), rings.end()));
+    }
 }

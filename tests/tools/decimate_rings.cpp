@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   decimate_rings.cpp
+ * @brief  Test tool: a copy of a KITTI sequence with every k-th ring of each scan only (and the
+ *         labels of those points), to stand for a sparser LiDAR: every 2nd of the HDL-64E's
+ *         rings is about an HDL-32E's spacing, every 4th a VLP-16's.
+ *
+ *   hif_decimate_rings <sequence folder> <output folder> <k>
+ */
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "hif/io/KittiSequence.h"
+#include "hif/io/Labels.h"
+#include "hif/io/Rings.h"
+
+namespace fs = std::filesystem;
+
+int main(int argc, char** argv)
+{
+    try
+    {
+        if (argc != 4)
+            throw std::runtime_error("usage: hif_decimate_rings <sequence> <output> <k>");
+        const hif::io::KittiSequence seq(argv[1]);
+        const fs::path out(argv[2]);
+        const int k = std::atoi(argv[3]);
+        if (k < 1 || k > 64) throw std::runtime_error("k must be in [1, 64]");
+        if (fs::exists(out)) throw std::runtime_error("'" + out.string() + "' exists");
+        fs::create_directories(out / "velodyne");
+        if (seq.hasLabels()) fs::create_directories(out / "labels");
+        for (const char* f : {"calib.txt", "poses.txt", "times.txt"})
+            fs::copy_file(fs::path(seq.dir()) / f, out / f);
+        std::size_t kept = 0, total = 0;
+        for (std::size_t i = 0; i < seq.size(); ++i)
+        {
+            const hif::io::Cloud scan = seq.readScan(i);
+            const std::vector<uint32_t> ring = hif::io::ringOfEachPoint(scan);
+            const bool labelled = seq.hasLabels() && fs::exists(seq.labelFile(i));
+            const std::vector<uint32_t> labels =
+                labelled ? hif::io::readLabels(seq.labelFile(i)) : std::vector<uint32_t>{};
+            if (labelled && labels.size() != scan.size())
+                throw std::runtime_error("'" + seq.labelFile(i) + "' does not match its scan");
+            std::vector<float> pts;
+            std::vector<uint32_t> lab;
+            for (std::size_t p = 0; p < scan.size(); ++p)
+            {
+                if (ring[p] % static_cast<uint32_t>(k) != 0) continue;
+                pts.insert(pts.end(), {scan.x[p], scan.y[p], scan.z[p], scan.intensity[p]});
+                if (labelled) lab.push_back(labels[p]);
+            }
+            kept += pts.size() / 4;
+            total += scan.size();
+            const std::string name = hif::io::frameName(i);
+            std::ofstream bin(out / "velodyne" / (name + ".bin"), std::ios::binary);
+            bin.write(reinterpret_cast<const char*>(pts.data()),
+                      static_cast<std::streamsize>(pts.size() * sizeof(float)));
+            bin.close();
+            if (!bin)
+                throw std::runtime_error("cannot write '" + (out / "velodyne").string() + "'");
+            if (labelled) hif::io::writeLabels((out / "labels" / (name + ".label")).string(), lab);
+        }
+        std::cout << "[hif_decimate_rings] every " << k << " ring(s) of " << seq.size()
+                  << " scans: " << kept << " of " << total << " points\n";
+        return 0;
+    }
+    catch (const std::exception& e)
+    {
+        std::cerr << "[hif_decimate_rings] error: " << e.what() << "\n";
+        return 1;
+    }
+}
