@@ -33,7 +33,7 @@ for mode in offline online; do
   "$BIN/hif-clean" -i "$OUT/scans.rawlog" -o "$OUT/$mode" $flag --overwrite
   if [ -d "$SEQ/labels" ]; then
     "$BIN/hif-eval" --labels "$SEQ/labels" --predictions "$OUT/$mode/predictions" \
-      --scans "$SEQ/velodyne" --json "$OUT/$mode/scores.json" -q > "$OUT/$mode/scores.txt"
+      --scans "$SEQ/velodyne" --json "$OUT/$mode/scores.json" --overwrite -q > "$OUT/$mode/scores.txt"
     tail -n 1 "$OUT/$mode/scores.txt" | sed "s/^\[hif-eval\]/[demo] $mode:/"
     grep "^moving-" "$OUT/$mode/scores.txt" | sed "s/^/[demo]   DA of /" || true
   fi
