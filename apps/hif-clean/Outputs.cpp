@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "hif/io/KittiSequence.h"
 #include "hif/io/Labels.h"
@@ -110,45 +111,43 @@ void Outputs::pictureCovers(const hif::CHeightIntervalMap& map)
     const auto pillars = map.grid().sortedPillars();
     if (pillars.empty()) return;
     // The map's main area, in blocks of about 32 m: a stray point or pose far from the rest
-    // must not set the picture's scale.
+    // must not set the picture's scale. Each block: its pillar count and their extent.
     const hif::GridGeometry& g = map.geometry();
     const auto per_block = static_cast<int64_t>(std::max(1.0, std::round(32.0 / g.pillar_size)));
     const auto block = [per_block](int32_t i)
     { return i >= 0 ? i / per_block : -((-int64_t{i} - 1) / per_block) - 1; };
-    std::vector<hif::apps::WeightedBlock> blocks;
+    struct Extent
+    {
+        std::size_t pillars = 0;
+        int64_t m0 = std::numeric_limits<int64_t>::max(), m1 = std::numeric_limits<int64_t>::min();
+        int64_t n0 = m0, n1 = m1;
+    };
+    std::map<std::pair<int64_t, int64_t>, Extent> by_block;
     for (const auto& [idx, pillar] : pillars)
     {
-        const int64_t bx = block(idx.m), by = block(idx.n);
-        if (blocks.empty() || blocks.back().bx != bx || blocks.back().by != by)
-            blocks.push_back({bx, by, 0});
-        ++blocks.back().weight;
+        Extent& e = by_block[{block(idx.m), block(idx.n)}];
+        ++e.pillars;
+        e.m0 = std::min<int64_t>(e.m0, idx.m);
+        e.m1 = std::max<int64_t>(e.m1, idx.m);
+        e.n0 = std::min<int64_t>(e.n0, idx.n);
+        e.n1 = std::max<int64_t>(e.n1, idx.n);
     }
-    // Sorted by (m, n), equal blocks need not be adjacent: merge them.
-    std::sort(blocks.begin(), blocks.end(),
-              [](const auto& a, const auto& b)
-              { return a.bx != b.bx ? a.bx < b.bx : a.by < b.by; });
-    std::vector<hif::apps::WeightedBlock> merged;
-    for (const auto& b : blocks)
-        if (!merged.empty() && merged.back().bx == b.bx && merged.back().by == b.by)
-            merged.back().weight += b.weight;
-        else
-            merged.push_back(b);
+    std::vector<hif::apps::WeightedBlock> blocks;
+    for (const auto& [b, e] : by_block) blocks.push_back({b.first, b.second, e.pillars});
     const double block_m = double(per_block) * g.pillar_size;
     const std::vector<bool> in = hif::apps::mainArea(
-        merged, static_cast<int64_t>(std::ceil(hif::apps::kAreaLinkMetres / block_m)));
-    int64_t m0 = std::numeric_limits<int64_t>::max(), m1 = std::numeric_limits<int64_t>::min();
-    int64_t n0 = m0, n1 = m1;
-    for (const auto& [idx, pillar] : pillars)
-    {
-        const auto it = std::lower_bound(
-            merged.begin(), merged.end(), hif::apps::WeightedBlock{block(idx.m), block(idx.n), 0},
-            [](const auto& a, const auto& b) { return a.bx != b.bx ? a.bx < b.bx : a.by < b.by; });
-        if (!in[std::size_t(it - merged.begin())]) continue;
-        m0 = std::min<int64_t>(m0, idx.m);
-        m1 = std::max<int64_t>(m1, idx.m);
-        n0 = std::min<int64_t>(n0, idx.n);
-        n1 = std::max<int64_t>(n1, idx.n);
-    }
+        blocks, static_cast<int64_t>(std::ceil(hif::apps::kAreaLinkMetres / block_m)));
+    Extent all;
+    std::size_t k = 0;
+    for (const auto& [b, e] : by_block)
+        if (in[k++])
+        {
+            all.m0 = std::min(all.m0, e.m0);
+            all.m1 = std::max(all.m1, e.m1);
+            all.n0 = std::min(all.n0, e.n0);
+            all.n1 = std::max(all.n1, e.n1);
+        }
+    const int64_t m0 = all.m0, m1 = all.m1, n0 = all.n0, n1 = all.n1;
     view_->cover(g.origin_x + double(m0) * g.pillar_size, g.origin_y + double(n0) * g.pillar_size,
                  g.origin_x + double(m1 + 1) * g.pillar_size,
                  g.origin_y + double(n1 + 1) * g.pillar_size);

@@ -19,6 +19,7 @@
 #include <stdexcept>
 
 #include "hif/apps/FrameComment.h"
+#include "hif/apps/WriteError.h"
 
 namespace
 {
@@ -117,12 +118,6 @@ RawlogOut::RawlogOut(const std::string& file, int level, std::string name) : nam
                                  "' cannot be created: " + std::strerror(errno));
 }
 
-void RawlogOut::throwWriteError(int err) const
-{
-    throw std::runtime_error("--rawlog-out '" + name_ + "' could not be written (disk full?): " +
-                             (err != 0 ? std::strerror(err) : "write failed"));
-}
-
 void RawlogOut::write(const hif::apps::Scan& scan, const std::vector<uint8_t>& dynamic)
 {
     auto arch = mrpt::serialization::archiveFrom(out_);
@@ -133,7 +128,7 @@ void RawlogOut::write(const hif::apps::Scan& scan, const std::vector<uint8_t>& d
         c->sensorLabel = "KITTI_FRAME";
         c->timestamp = stamp;
         c->text = hif::apps::kittiFrameComment(*scan.frame);
-        writeOrThrow(arch, *c);
+        hif::apps::writeOrThrow(what(), [&] { arch << *c; });
     }
     if (scan.has_pose)
     {
@@ -142,31 +137,16 @@ void RawlogOut::write(const hif::apps::Scan& scan, const std::vector<uint8_t>& d
         p->timestamp = stamp;
         p->pose.mean = scan.robot_pose;
         p->pose.cov.setZero();
-        writeOrThrow(arch, *p);
+        hif::apps::writeOrThrow(what(), [&] { arch << *p; });
     }
     const auto clean = withoutDynamic(*scan.obs, dynamic);
-    writeOrThrow(arch, *clean);
+    hif::apps::writeOrThrow(what(), [&] { arch << *clean; });
     for (const uint8_t d : dynamic) points_dropped += d;
     ++scans;
 }
 
-void RawlogOut::writeOrThrow(mrpt::serialization::CArchive& arch,
-                             const mrpt::serialization::CSerializable& obj)
-{
-    errno = 0;
-    try
-    {
-        arch << obj;
-    }
-    catch (const std::exception&)
-    {
-        throwWriteError(errno);
-    }
-}
-
 void RawlogOut::close()
 {
-    errno = 0;
-    out_.close();
-    if (errno == ENOSPC || errno == EFBIG) throwWriteError(errno);  // the last flush
+    hif::apps::writeOrThrow(
+        what(), [&] { out_.close(); }, /*closing=*/true);
 }

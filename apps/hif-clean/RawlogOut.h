@@ -7,7 +7,6 @@
 #pragma once
 
 #include <mrpt/io/CFileGZOutputStream.h>
-#include <mrpt/serialization/CArchive.h>
 
 #include <cstdint>
 #include <string>
@@ -33,9 +32,8 @@ public:
     std::size_t scans = 0, points_dropped = 0;
 
 private:
-    [[noreturn]] void throwWriteError(int err) const;
-    void writeOrThrow(mrpt::serialization::CArchive& arch,
-                      const mrpt::serialization::CSerializable& obj);
+    /** How a failed write names the rawlog. */
+    [[nodiscard]] std::string what() const { return "--rawlog-out '" + name_ + "'"; }
 
     std::string name_;
     mrpt::io::CFileGZOutputStream out_;

@@ -50,11 +50,7 @@ void describeInputs(const std::string& path, RunFiles& files)
 {
     const fs::path p(path);
     if (fs::is_directory(p / "velodyne"))
-    {
-        files.inputFolder((p / "velodyne").string(), ".bin", "the scans of -i");
-        for (const char* f : {"poses.txt", "calib.txt", "times.txt"})
-            files.input((p / f).string(), std::string("the ") + f + " of -i");
-    }
+        files.inputKittiSequence(path, "-i");
     else if (fs::is_directory(p / "pcd"))
         files.inputFolder((p / "pcd").string(), ".pcd", "the scans of -i");
     else

@@ -63,7 +63,7 @@ public:
 };
 
 /** Adds to `files` what reading `path` reads (see openScanSource()): a rawlog or simple map
- *  file, or a folder's scan files and its poses, calibration and times. */
+ *  file, a KITTI folder's files, or a DynamicMap folder's scans. */
 void describeInputs(const std::string& path, RunFiles& files);
 
 /** Throws std::runtime_error naming `where` and the file if `obs` keeps its points in an

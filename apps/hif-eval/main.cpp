@@ -254,13 +254,15 @@ int run(Cli& cli)
     }
     const bool overwrite = cli.overwrite.getValue();
     std::optional<hif::apps::StagedFile> json_file, png_file, ply_file;
-    for (auto [arg, staged, flag] : {std::tuple{&cli.json, &json_file, "--json"},
-                                     {&cli.png, &png_file, "--png"},
-                                     {&cli.classes_ply, &ply_file, "--classes-ply"}})
+    const std::tuple<TCLAP::ValueArg<std::string>*, std::optional<hif::apps::StagedFile>*,
+                     const char*>
+        written[] = {{&cli.json, &json_file, "--json"},
+                     {&cli.png, &png_file, "--png"},
+                     {&cli.classes_ply, &ply_file, "--classes-ply"}};
+    // All checked against the inputs and each other before the first is staged.
+    for (const auto& [arg, staged, flag] : written)
         if (arg->isSet()) files.output(arg->getValue(), flag);
-    for (auto [arg, staged, flag] : {std::tuple{&cli.json, &json_file, "--json"},
-                                     {&cli.png, &png_file, "--png"},
-                                     {&cli.classes_ply, &ply_file, "--classes-ply"}})
+    for (const auto& [arg, staged, flag] : written)
         if (arg->isSet()) staged->emplace(arg->getValue(), overwrite, flag);
 
     std::optional<hif::apps::TopView> view;

@@ -16,8 +16,6 @@
 #include <mrpt/poses/CPose3D.h>
 #include <mrpt/serialization/CArchive.h>
 
-#include <cerrno>
-#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -26,6 +24,7 @@
 #include "hif/apps/FrameComment.h"
 #include "hif/apps/RunFiles.h"
 #include "hif/apps/Staged.h"
+#include "hif/apps/WriteError.h"
 #include "hif/io/CloudFiles.h"
 #include "hif/io/KittiSequence.h"
 #include "hif/io/Labels.h"
@@ -76,15 +75,6 @@ struct Cli
     TCLAP::SwitchArg quiet{"q", "quiet", "No progress bar", cmd};
 };
 
-/** The error for a rawlog that could not be written: what the system said (disk full, file too
- *  large, ...), not MRPT's "Cannot write bytes". */
-[[noreturn]] void throwWriteError(const std::string& file, int err)
-{
-    throw std::runtime_error("'" + file + "' could not be written (disk full?): " +
-                             (err != 0 ? std::strerror(err) : "write failed") +
-                             "; nothing was left behind");
-}
-
 /** The scans first..last as <dir>/pcd/NNNNNN.pcd, points in the world frame. */
 void writeDynamicMap(const hif::io::KittiSequence& seq, std::size_t first, std::size_t last,
                      const std::string& dir, bool overwrite, const std::string& tag,
@@ -107,16 +97,6 @@ void writeDynamicMap(const hif::io::KittiSequence& seq, std::size_t first, std::
     }
     progress.finish();
     staged.commit();
-}
-
-/** The files a conversion of `seq` reads. */
-void describeSequence(const hif::io::KittiSequence& seq, hif::apps::RunFiles& files)
-{
-    const std::filesystem::path d(seq.dir());
-    files.inputFolder((d / "velodyne").string(), ".bin", "the scans of -i");
-    files.inputFolder((d / "labels").string(), ".label", "the labels of -i");
-    for (const char* f : {"poses.txt", "calib.txt", "times.txt"})
-        files.input((d / f).string(), std::string("the ") + f + " of -i");
 }
 
 int run(Cli& cli)
@@ -149,7 +129,7 @@ int run(Cli& cli)
         std::cout << tag << " sequence '" << seq.dir() << "': scans " << first << ".." << last
                   << " of " << n << " into the DynamicMap layout '" << out_file << "/pcd'\n";
         hif::apps::RunFiles files;
-        describeSequence(seq, files);
+        files.inputKittiSequence(seq.dir(), "-i");
         files.output(hif::apps::cleanDir(out_file) + "/pcd", "the pcd/ of -o", true);
         writeDynamicMap(seq, first, last, out_file, cli.overwrite.getValue(), tag,
                         !cli.quiet.getValue());
@@ -159,7 +139,7 @@ int run(Cli& cli)
     // Never over an input; written aside and renamed when complete: a failed conversion leaves
     // no partial rawlog.
     hif::apps::RunFiles files;
-    describeSequence(seq, files);
+    files.inputKittiSequence(seq.dir(), "-i");
     files.output(out_file, "-o");
     hif::apps::StagedFile staged(out_file, cli.overwrite.getValue(), "-o");
 
@@ -203,6 +183,7 @@ int run(Cli& cli)
         stream = std::move(plain);
     }
     auto arch = mrpt::serialization::archiveFrom(*stream);
+    const std::string written = "'" + out_file + "'";  // for a failed write
 
     hif::apps::Progress progress(tag, "converting", last - first + 1, !cli.quiet.getValue());
     for (std::size_t i = first; i <= last; ++i)
@@ -238,28 +219,12 @@ int run(Cli& cli)
                 throw std::runtime_error("error reading '" + seq.scanFile(i) + "'");
             scan->pointcloud = cloud;
         }
-        errno = 0;
-        try
-        {
-            arch << *frame << *pose_obs << *scan;
-        }
-        catch (const std::exception&)
-        {
-            throwWriteError(out_file, errno);
-        }
+        hif::apps::writeOrThrow(written, [&] { arch << *frame << *pose_obs << *scan; });
         progress.update(i - first + 1);
     }
     progress.finish();
-    errno = 0;
-    try
-    {
-        stream.reset();  // flushed and closed
-    }
-    catch (const std::exception&)
-    {
-        throwWriteError(out_file, errno);
-    }
-    if (errno == ENOSPC || errno == EFBIG) throwWriteError(out_file, errno);  // the last flush
+    hif::apps::writeOrThrow(
+        written, [&] { stream.reset(); }, /*closing=*/true);
     staged.commit();
     std::cout << tag << " done: " << (last - first + 1) << " scans\n";
     return 0;

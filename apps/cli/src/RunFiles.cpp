@@ -60,6 +60,15 @@ void RunFiles::inputFolder(const std::string& dir, const std::string& ext, const
     inputs_.push_back({dir, realPath(dir), what, ext, true});
 }
 
+void RunFiles::inputKittiSequence(const std::string& dir, const std::string& what)
+{
+    const fs::path d(dir);
+    inputFolder((d / "velodyne").string(), ".bin", "the scans of " + what);
+    inputFolder((d / "labels").string(), ".label", "the labels of " + what);
+    for (const char* f : {"poses.txt", "calib.txt", "times.txt"})
+        input((d / f).string(), std::string("the ") + f + " of " + what);
+}
+
 void RunFiles::output(const std::string& path, const std::string& what, bool folder)
 {
     const std::string real = realPath(path);

@@ -25,6 +25,9 @@ namespace hif::apps
 {
 namespace
 {
+/** The flag every app takes to replace earlier results. */
+const std::string kOverwriteFlag = "--overwrite";
+
 std::string pidSuffix() { return "-" + std::to_string(getpid()); }
 
 bool processAlive(long pid)
@@ -187,19 +190,18 @@ void StagedFolder::commit()
 }
 
 StagedFile::StagedFile(const std::string& file, bool overwrite, const std::string& what)
-    : file_(file), overwrite_(overwrite), flag_("--overwrite")
+    : file_(file), overwrite_(overwrite)
 {
-    const std::string& flag = what;
     const fs::path p(file);
     std::error_code ec;
     if (fs::is_directory(p, ec))
-        throw std::runtime_error(flag + " '" + file + "' is a folder (a file name was expected)");
+        throw std::runtime_error(what + " '" + file + "' is a folder (a file name was expected)");
     const fs::path parent = p.parent_path().empty() ? fs::path(".") : p.parent_path();
     if (!fs::is_directory(parent, ec))
         throw std::runtime_error(
-            flag + " '" + file + "': the folder '" + parent.string() +
+            what + " '" + file + "': the folder '" + parent.string() +
             (fs::exists(parent, ec) ? "' is not a folder" : "' does not exist"));
-    refuseToOverwrite(file_, overwrite, flag_);
+    refuseToOverwrite(file_, overwrite, kOverwriteFlag);
     // Beside it, hidden, with the same extension (which may say the format).
     const std::string stem = "." + p.stem().string() + ".partial-";
     removeStale(parent, stem, p.extension().string());
@@ -216,7 +218,7 @@ StagedFile::~StagedFile()
 
 void StagedFile::commit()
 {
-    moveInto(partial_, file_, overwrite_, flag_);
+    moveInto(partial_, file_, overwrite_, kOverwriteFlag);
     committed_ = true;
 }
 

@@ -19,6 +19,9 @@ public:
     void input(const std::string& path, const std::string& what);
     /** A folder of which the run reads the files ending in `ext` (e.g. ".label"). */
     void inputFolder(const std::string& dir, const std::string& ext, const std::string& what);
+    /** The files of a KITTI sequence folder (SemanticKITTI layout): the .bin files of velodyne/,
+     *  the .label files of labels/, poses.txt, calib.txt, times.txt; named "the ... of <what>". */
+    void inputKittiSequence(const std::string& dir, const std::string& what);
 
     /** A file (or, with `folder`, a folder replaced whole) the run writes. Throws
      *  std::runtime_error, naming both, if it is an input, a file of an input folder's kind in

@@ -38,9 +38,6 @@ public:
 
     /** The folder to write the entries into. */
     [[nodiscard]] const std::string& path() const { return staging_; }
-    /** The folder the entries go to, and their names. */
-    [[nodiscard]] const std::string& dir() const { return dir_; }
-    [[nodiscard]] const std::vector<std::string>& names() const { return names_; }
     /** Moves the new entries into `dir`, replacing the old ones (without `overwrite`, refusing
      *  to replace one that appeared meanwhile). */
     void commit();
@@ -82,7 +79,6 @@ public:
 private:
     std::string file_, partial_;
     bool overwrite_;
-    std::string flag_;
     bool committed_ = false;
     std::optional<RemoveOnInterrupt> remove_partial_;
 };
