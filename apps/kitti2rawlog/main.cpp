@@ -86,12 +86,17 @@ void writeDynamicMap(const hif::io::KittiSequence& seq, std::size_t first, std::
     hif::apps::Progress progress(tag, "converting", last - first + 1, show_progress);
     for (std::size_t i = first; i <= last; ++i)
     {
-        hif::io::Cloud scan = seq.readScan(i);
-        hif::io::transform(scan, seq.pose(i));
+        const hif::io::Cloud scan = seq.readScan(i);
+        const Eigen::Isometry3d& T = seq.pose(i);
         hif::io::CloudWriter pcd({pcd_dir + "/" + hif::io::frameName(i) + ".pcd"});
-        pcd.setViewpoint(seq.pose(i));
+        pcd.setViewpoint(T);
+        // World points in double: a sequence in UTM coordinates keeps its millimetres (the
+        // writer stores float64 where float32 would lose them).
         for (std::size_t k = 0; k < scan.size(); ++k)
-            pcd.add(scan.x[k], scan.y[k], scan.z[k], scan.intensity[k]);
+        {
+            const Eigen::Vector3d p = T * Eigen::Vector3d(scan.x[k], scan.y[k], scan.z[k]);
+            pcd.add(p.x(), p.y(), p.z(), scan.intensity[k]);
+        }
         pcd.close();
         progress.update(i - first + 1);
     }

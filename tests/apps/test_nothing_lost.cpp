@@ -398,6 +398,22 @@ TEST(Georeferenced, AShiftedRealClipGivesTheSameClassesAndItsPointsPlusTheShift)
     };
     EXPECT_EQ(score(seq + "/velodyne", "local"), score(d + "/utm/velodyne", "shifted"));
     EXPECT_NE(bytesOf(d + "/shifted.ply").find("property double x\n"), std::string::npos);
+    // kitti2rawlog --dynamicmap writes the shifted scans' world points to the millimetre too.
+    for (const std::string name : {"local", "shifted"})
+    {
+        const Result c =
+            runApp("kitti2rawlog", "-i " + (name == "local" ? seq : d + "/utm") + " -o " + d +
+                                       "/dm_" + name + " --dynamicmap --last 1 -q");
+        ASSERT_EQ(c.code, 0) << c.output;
+    }
+    const auto dl = hif::io::readPcd(d + "/dm_local/pcd/000001.pcd");
+    const auto ds = hif::io::readPcd(d + "/dm_shifted/pcd/000001.pcd");
+    ASSERT_EQ(dl.size(), ds.size());
+    double worst = 0;
+    for (std::size_t i = 0; i < dl.size(); ++i)
+        worst = std::max(worst, (ds.point(i) - shift - dl.point(i)).cwiseAbs().maxCoeff());
+    EXPECT_LT(worst, 1e-3);
+    EXPECT_NEAR((ds.viewpoint.translation() - dl.viewpoint.translation() - shift).norm(), 0, 1e-6);
 }
 
 TEST_F(NothingLost, AGridOriginOrAPoseOffTheGridIsRefused)

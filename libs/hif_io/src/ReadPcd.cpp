@@ -226,7 +226,7 @@ void toViewpointFrame(PcdCloud& pcd)
     const bool zero_origin = pcd.origin.isZero(0.0);
     for (std::size_t i = 0; i < pcd.size(); ++i)
     {
-        // With a zero origin, exactly what transform(pcd, inv) does.
+        // With a zero origin, the file's float32 points as they are, moved in double.
         const Eigen::Vector3d p =
             inv * (zero_origin ? Eigen::Vector3d(pcd.x[i], pcd.y[i], pcd.z[i]) : pcd.point(i));
         pcd.x[i] = static_cast<float>(p.x());
