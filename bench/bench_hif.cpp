@@ -202,6 +202,8 @@ void BM_InsertStep(benchmark::State& state)
             state.PauseTiming();
             hif::detail::bucketPoints(g, v, T, sp);
             if (step == 2) hif::detail::buildSpans(g, sp);
+            if (step == 2 && hif::detail::needsScanImage(g.params()))
+                hif::detail::buildScanImage(g, v);
             state.ResumeTiming();
             if (step == 1) hif::detail::buildSpans(g, sp);
         }
@@ -212,6 +214,7 @@ void BM_InsertStep(benchmark::State& state)
         {
             state.PauseTiming();
             if (step == 0) hif::detail::buildSpans(g, sp);
+            if (hif::detail::needsScanImage(g.params())) hif::detail::buildScanImage(g, v);
             hif::detail::updatePillars(g, sp);
             state.ResumeTiming();
         }
@@ -297,7 +300,7 @@ void BM_ClassifyOfflineConfig(benchmark::State& state)
     for (std::size_t i = 0; i < scans().size(); ++i)
     {
         g.insertScan(scans().view(i), scans().poses[i]);
-        window.add(i, scans().view(i), scans().poses[i]);
+        window.add(i, scans().view(i), scans().poses[i], g.imageLayout());
     }
     std::vector<uint8_t> dyn;
     std::size_t k = 0, seen_through = 0;
@@ -317,11 +320,14 @@ void BM_WindowImage(benchmark::State& state)
 {
     if (!haveScans(state)) return;
     hif::ScanWindow window;
+    // Laid out as a map lays out the images of its sensor (estimated from the first scan).
+    const auto layout =
+        hif::RangeImageLayout::forSensor(hif::SensorModel::estimate(scans().view(0)));
     std::size_t id = 0;
     for (auto _ : state)
     {
         const std::size_t k = id % scans().size();
-        window.add(id, scans().view(k), scans().poses[k]);
+        window.add(id, scans().view(k), scans().poses[k], layout);
         window.dropBefore(id >= 20 ? id - 20 : 0);
         ++id;
     }

@@ -63,6 +63,24 @@ void writeSummary(const std::string& file, const SummaryInfo& info,
                         {"height", info.picture->height},
                         {"cell_m", info.picture->cell_metres},
                         {"points_outside", info.picture->points_outside}};
+    if (const auto& m = map.grid().sensorModel())
+    {
+        nlohmann::ordered_json sj;
+        sj["beams"] = m->beam_elevations_deg.size();
+        sj["beam_elevations_deg"] = m->beam_elevations_deg;
+        sj["elevation_min_deg"] = m->elevation_min_deg;
+        sj["elevation_max_deg"] = m->elevation_max_deg;
+        sj["vertical_spacing_deg"] = m->vertical_spacing_deg;
+        sj["horizontal_resolution_deg"] = m->horizontal_resolution_deg;
+        sj["azimuth_coverage_deg"] = m->azimuth_coverage_deg;
+        if (info.sensor.estimated_from_scan)
+            sj["estimated_from_scan"] = *info.sensor.estimated_from_scan;
+        sj["scans_checked"] = info.sensor.checks;
+        sj["contradictions"] = info.sensor.contradictions;
+        j["sensor"] = sj;
+    }
+    else
+        j["sensor"] = nullptr;
     nlohmann::ordered_json pj;
     addFields(pj, map.geometry());
     addFields(pj, map.params());

@@ -7,8 +7,17 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "Outputs.h"
+
+/** Where the map's sensor model came from and which later scans contradicted it. */
+struct SensorReport
+{
+    std::optional<std::size_t> estimated_from_scan;  ///< none: given, or never estimated
+    std::size_t checks = 0;                          ///< scans checked against it
+    std::vector<std::string> contradictions;         ///< "scan k: why"
+};
 
 struct SummaryInfo
 {
@@ -17,6 +26,7 @@ struct SummaryInfo
     bool held_scans = false;
     std::size_t skipped_objects = 0;
     std::optional<hif::apps::TopView::Picture> picture;  ///< map.png, if drawn
+    SensorReport sensor;
 };
 
 /** summary.json: counts, map size, timings and every parameter of the map. */

@@ -167,6 +167,7 @@ struct Run
     std::unique_ptr<hif::apps::StagedFile> staged_rawlog;  ///< --rawlog-out
     mrpt::maps::CMultiMetricMap maps;
     hif::CHeightIntervalMap::Ptr hif_map;
+    SensorReport sensor;  ///< the sensor model: where it came from, what contradicted it
 };
 
 /** What hif-clean writes into its output folder (and replaces, with --overwrite). */
@@ -193,9 +194,8 @@ void setUp(Cli& cli, Run& run)
                                            {
                                                if (!run.prepare_window) return;
                                                s.obs->load();
-                                               s.window_scan =
-                                                   hif::CHeightIntervalMap::makeWindowScan(
-                                                       run.window_ids++, *s.obs, s.robot_pose);
+                                               s.window_scan = run.hif_map->makeWindowScan(
+                                                   run.window_ids++, *s.obs, s.robot_pose);
                                            });
     run.cfg_file = cli.config.isSet() ? cli.config.getValue()
                                       : defaultConfig(run.online, run.source->isDynamicMapFolder());
@@ -288,6 +288,28 @@ void checkInsideGrid(const Run& run, std::size_t scan)
     throw std::runtime_error(msg.str());
 }
 
+/** Prints the sensor model when the map estimated it from scan `k`, and a warning when scan
+ *  `k` contradicted it (the first few; all are counted in summary.json). */
+void reportSensor(Run& run, std::size_t k)
+{
+    const hif::InsertStats& st = run.hif_map->lastInsertStats();
+    SensorReport& r = run.sensor;
+    if (st.sensor_estimated)
+    {
+        r.estimated_from_scan = k;
+        std::cout << kTag << " sensor : " << run.hif_map->grid().sensorModel()->describe()
+                  << " (estimated from scan " << k << ")\n";
+    }
+    if (st.sensor_checked) ++r.checks;
+    if (st.sensor_contradiction.empty()) return;
+    constexpr std::size_t kShown = 3;
+    if (r.contradictions.size() < kShown)
+        std::cout << kTag << " warning: scan " << k << " does not look like the sensor of scan "
+                  << r.estimated_from_scan.value_or(0) << ": " << st.sensor_contradiction
+                  << " (are the scans from one LiDAR?)\n";
+    r.contradictions.push_back("scan " + std::to_string(k) + ": " + st.sensor_contradiction);
+}
+
 /** Points of a scan when its type says so without converting it (a point cloud), else 0. */
 std::size_t pointsOf(const mrpt::obs::CObservation& obs)
 {
@@ -311,6 +333,7 @@ std::vector<hif::apps::Scan> insertAll(Run& run, Outputs& out, Timings& t)
         run.maps.insertObservation(*scan.obs, scan.robot_pose);
         const double ms = msSince(t0);
         checkInsideGrid(run, t.scans);
+        reportSensor(run, t.scans);
         t.insert_ms.push_back(ms);
         t.points += pointsOf(*scan.obs);
         if (run.online)
@@ -367,7 +390,7 @@ void classifyAll(Run& run, std::vector<hif::apps::Scan>& held, Outputs& out, std
                 window.add(std::move(*s.window_scan));
             }
             else if (w > 0)
-                hif::CHeightIntervalMap::addToWindow(window, next, *s.obs, s.robot_pose);
+                run.hif_map->addToWindow(window, next, *s.obs, s.robot_pose);
             ahead.push_back(std::move(s));
             ++next;
         }
@@ -437,7 +460,8 @@ int runClean(Cli& cli)
     t.total_s = msSince(t_start) / 1000.0;
 
     SummaryInfo info{
-        run.input, run.cfg_file, run.online, run.hold_scans, run.source->skippedObjects(), picture};
+        run.input, run.cfg_file, run.online, run.hold_scans, run.source->skippedObjects(),
+        picture,   run.sensor};
     writeSummary(dir + "/summary.json", info, *run.hif_map, out, t);
     run.staged->commit();
     if (run.staged_dm) run.staged_dm->commit();

@@ -32,22 +32,26 @@ beta=0.45
         std::cerr << "consumer: no hif::CHeightIntervalMap created from the .ini\n";
         return 1;
     }
-    // A ground point every scan; an object at 1 m only in the first scan.
+    // A ground point every scan; an object at 1 m only in the first scan, which later scans
+    // see through (their beam toward it returns from twice as far).
     for (int scan = 0; scan < 6; ++scan)
     {
         auto pts = mrpt::maps::CSimplePointsMap::Create();
-        pts->insertPoint(0.5f, 0.5f, 0.0f);
-        if (scan == 0) pts->insertPoint(0.5f, 0.5f, 1.0f);
+        pts->insertPoint(10.5f, 0.5f, 0.0f);
+        if (scan == 0)
+            pts->insertPoint(10.5f, 0.5f, 1.0f);
+        else
+            pts->insertPoint(21.0f, 1.0f, 2.0f);
         auto obs = mrpt::obs::CObservationPointCloud::Create();
         obs->pointcloud = pts;
         multi.insertObservation(*obs);
     }
     mrpt::maps::CSimplePointsMap query;
-    query.insertPoint(0.5f, 0.5f, 0.0f);
-    query.insertPoint(0.5f, 0.5f, 1.0f);
+    query.insertPoint(10.5f, 0.5f, 0.0f);
+    query.insertPoint(10.5f, 0.5f, 1.0f);
     std::vector<uint8_t> dyn;
     map->classify(query, dyn);
-    const bool ok = map->isStatic({0.5, 0.5, 0.0}) && !map->isStatic({0.5, 0.5, 1.0}) &&
+    const bool ok = map->isStatic({10.5, 0.5, 0.0}) && !map->isStatic({10.5, 0.5, 1.0}) &&
                     dyn == std::vector<uint8_t>{0, 1};
     std::cout << "consumer: " << map->asString() << (ok ? " -- OK" : " -- WRONG") << "\n";
     return ok ? 0 : 1;

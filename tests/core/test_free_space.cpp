@@ -23,6 +23,9 @@ using namespace hif;
 
 namespace
 {
+/** The windows of these tests use the layout of a map without a sensor model. */
+const RangeImageLayout kLayout = RangeImageLayout::forSensor(std::nullopt);
+
 enum What : uint8_t
 {
     kNothing,
@@ -178,7 +181,7 @@ Removed offline(const std::vector<Scan>& scans, const Params& prm, bool with_win
     for (std::size_t i = 0; i < scans.size(); ++i)
     {
         grid.insertScan(scans[i].view(), scans[i].pose);
-        window.add(i, scans[i].view(), scans[i].pose);
+        window.add(i, scans[i].view(), scans[i].pose, kLayout);
     }
     Removed r;
     for (std::size_t i = 0; i < scans.size(); ++i)
@@ -261,7 +264,7 @@ TEST(FreeSpaceTest, OffByDefaultAndOnlyScansWithinTheWindowCount)
     {
         grid.insertScan(scans[i].view(), scans[i].pose);
         grid1.insertScan(scans[i].view(), scans[i].pose);
-        window.add(i, scans[i].view(), scans[i].pose);
+        window.add(i, scans[i].view(), scans[i].pose, kLayout);
     }
     std::vector<uint8_t> dyn;
     Removed all, one;
@@ -282,7 +285,7 @@ TEST(FreeSpaceTest, AScanIsNoEvidenceAboutItselfAndOnlineSeesThePastOnly)
 
     // A window holding the scan alone says nothing about it.
     ScanWindow alone;
-    alone.add(4, scans[4].view(), scans[4].pose);
+    alone.add(4, scans[4].view(), scans[4].pose, kLayout);
     const ClassifyStats st = grid.classify(scans[4].view(), dyn, scans[4].pose, alone, 4);
     EXPECT_EQ(st.seen_through_points, 0u);
 
@@ -293,7 +296,7 @@ TEST(FreeSpaceTest, AScanIsNoEvidenceAboutItselfAndOnlineSeesThePastOnly)
     for (std::size_t i = 0; i < 6; ++i)
     {
         online_grid.insertScan(scans[i].view(), scans[i].pose);
-        past.add(i, scans[i].view(), scans[i].pose);
+        past.add(i, scans[i].view(), scans[i].pose, kLayout);
     }
     const Scan& now = scans[6];
     online_grid.insertScan(now.view(), now.pose);
@@ -336,7 +339,7 @@ TEST(FreeSpaceTest, AWalkerIsShownByItsLeadingEdgeWhicheverWayTheSweepGoes)
         PillarGrid grid(GridGeometry(), prm);
         ScanWindow past;
         grid.insertScan(scans[0].view(), scans[0].pose);
-        past.add(0, scans[0].view(), scans[0].pose);
+        past.add(0, scans[0].view(), scans[0].pose, kLayout);
         grid.insertScan(scans[1].view(), scans[1].pose);
         std::vector<uint8_t> dyn;
         grid.classify(scans[1].view(), dyn, scans[1].pose, past, std::nullopt);
@@ -356,10 +359,10 @@ TEST(ScanWindow, IdsIncreaseAndOldScansAreDropped)
 {
     const std::vector<Scan> scans = makeScans();
     ScanWindow w;
-    w.add(3, scans[0].view(), scans[0].pose);
-    w.add(5, scans[1].view(), scans[1].pose);
-    EXPECT_THROW(w.add(5, scans[2].view(), scans[2].pose), std::invalid_argument);
-    w.add(8, scans[2].view(), scans[2].pose);
+    w.add(3, scans[0].view(), scans[0].pose, kLayout);
+    w.add(5, scans[1].view(), scans[1].pose, kLayout);
+    EXPECT_THROW(w.add(5, scans[2].view(), scans[2].pose, kLayout), std::invalid_argument);
+    w.add(8, scans[2].view(), scans[2].pose, kLayout);
     EXPECT_EQ(w.size(), 3u);
     w.dropBefore(5);
     ASSERT_EQ(w.size(), 2u);
@@ -369,10 +372,10 @@ TEST(ScanWindow, IdsIncreaseAndOldScansAreDropped)
 
     // Entries built apart (makeScan, as hif-clean's reader thread does) are the same as those
     // add() builds, and a window sliding over many scans stays the same size either way.
-    const ScanWindow::Scan made = ScanWindow::makeScan(9, scans[2].view(), scans[2].pose);
+    const ScanWindow::Scan made = ScanWindow::makeScan(9, scans[2].view(), scans[2].pose, kLayout);
     EXPECT_EQ(made.image, w.scans().back().image);
     EXPECT_TRUE(made.sensor_to_world.isApprox(w.scans().back().sensor_to_world));
-    EXPECT_THROW(w.add(ScanWindow::makeScan(8, scans[2].view(), scans[2].pose)),
+    EXPECT_THROW(w.add(ScanWindow::makeScan(8, scans[2].view(), scans[2].pose, kLayout)),
                  std::invalid_argument);
     for (const bool apart : {false, true})
     {
@@ -382,9 +385,9 @@ TEST(ScanWindow, IdsIncreaseAndOldScansAreDropped)
         {
             const Scan& sc = scans[id % scans.size()];
             if (apart)
-                slide.add(ScanWindow::makeScan(id, sc.view(), sc.pose));
+                slide.add(ScanWindow::makeScan(id, sc.view(), sc.pose, kLayout));
             else
-                slide.add(id, sc.view(), sc.pose);
+                slide.add(id, sc.view(), sc.pose, kLayout);
             slide.dropBefore(id >= 5 ? id - 5 : 0);
             if (id == 20) bytes_at_20 = slide.memoryBytes();
         }

@@ -458,8 +458,11 @@ TEST(ParamsPaper, TurnsOffEveryAddition)
     EXPECT_FALSE(p.high_height_preservation);
     EXPECT_FALSE(p.unseen_height_prior);
     EXPECT_EQ(p.beam_spacing_deg, 0.0);
+    EXPECT_FALSE(p.sensor_from_scans);
+    EXPECT_FALSE(p.miss_needs_beam);
     Params q = p;
-    q.high_height_preservation = q.unseen_height_prior = true;
+    q.high_height_preservation = q.unseen_height_prior = q.sensor_from_scans = true;
+    q.miss_needs_beam = true;
     q.beam_spacing_deg = Params().beam_spacing_deg;
     EXPECT_EQ(q, Params());  // and nothing else differs from the defaults
 }
@@ -490,8 +493,11 @@ TEST(RangeAdaptiveIntervals, FarPillarsMergeHeightsOneBeamApart)
 TEST(HighHeightPreservation, GridMeasuresTheTopBeamFromTheScan)
 {
     // Scan 1, from 30 m away: a wall 3 m high, seen whole. Then scans from 5 m away, whose top
-    // beam (measured from their own points) cannot see the wall above about 0.46 m.
+    // beam (measured from their own points) cannot see the wall above about 0.46 m. Every
+    // miss counts (Eq. 13 as the paper has it): the few points here pass no beam through the
+    // wall's top, so with miss_needs_beam it would be kept either way.
     Params prm;
+    prm.miss_needs_beam = false;
     PillarGrid grid(GridGeometry(), prm);
     std::vector<float> x, y, z;
     for (int k = 0; k <= 30; ++k)

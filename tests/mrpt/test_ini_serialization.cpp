@@ -247,7 +247,10 @@ TEST(CHeightIntervalMapSerialization, Version0MapsStillLoad)
     buf.Seek(0);
     auto in = mrpt::serialization::archiveFrom(buf);
     loaded.read(in);
-    EXPECT_TRUE(loaded.grid() == map.grid());
+    hif::PillarGrid expected = map.grid();  // a version-0 map has no sensor model
+    expected.setSensorModel(std::nullopt);
+    EXPECT_FALSE(loaded.grid().sensorModel());
+    EXPECT_TRUE(loaded.grid() == expected);
     EXPECT_EQ(loaded.params(), map.params());
     EXPECT_EQ(loaded.insertionOptions.see_through_range, 0.0);
     EXPECT_EQ(loaded.insertionOptions.see_through_margin, hif::Params().see_through_margin);
@@ -326,14 +329,16 @@ TEST(CHeightIntervalMapSerialization, AHugeIntervalCountInAShortFileIsNotAllocat
     auto out = mrpt::serialization::archiveFrom(buf);
     out << map;
     // The stream ends with the one pillar's interval count (uint32), its intervals (12 bytes
-    // each) and MRPT's end-of-object byte.
+    // each), the sensor model's flag (0: one point gives no model) and MRPT's end-of-object
+    // byte.
     const uint32_t intervals =
         static_cast<uint32_t>(map.grid().sortedPillars().at(0).second->intervals.size());
     ASSERT_GE(intervals, 1u);
     std::vector<uint8_t> bytes(
         static_cast<const uint8_t*>(buf.getRawBufferData()),
         static_cast<const uint8_t*>(buf.getRawBufferData()) + buf.getTotalBytesCount());
-    const std::size_t at = bytes.size() - 1 - 12 * intervals - 4;
+    ASSERT_EQ(bytes[bytes.size() - 2], 0u) << "no sensor model";
+    const std::size_t at = bytes.size() - 2 - 12 * intervals - 4;
     uint32_t count = 0;
     std::memcpy(&count, &bytes[at], 4);
     ASSERT_EQ(count, intervals);

@@ -129,6 +129,9 @@ TEST(CHeightIntervalMap, Inserts2DAnd3DRangeScansAtTheirPoses)
 TEST(CHeightIntervalMap, ClassifyAndLikelihoodFollowTheIntervals)
 {
     CHeightIntervalMap map;
+    // Every miss counts (Eq. 13 as the paper has it): a scan of one point passes no beam
+    // through the box, so with miss_needs_beam the box would stay.
+    map.insertionOptions.miss_needs_beam = false;
     // Scan 1: ground and a box at 1 m in pillar (0,0); scan 2 onward: ground only.
     ASSERT_TRUE(map.insertObservation(*cloud({{0.5, 0.5, 0.0}, {0.5, 0.5, 1.0}})));
     for (int k = 0; k < 5; ++k) ASSERT_TRUE(map.insertObservation(*cloud({{0.5, 0.5, 0.0}})));

@@ -16,6 +16,7 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
                   ScanBuckets& out, bool keep_index)
 {
     out.sensor = T.translation();
+    out.world_to_sensor = T.linear().transpose();
     out.top_slope_sq = -std::numeric_limits<double>::infinity();
     out.tmp_m.resize(pts.size);
     out.tmp_n.resize(pts.size);

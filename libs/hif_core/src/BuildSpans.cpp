@@ -21,7 +21,7 @@ void buildSpans(const PillarGrid& grid, ScanBuckets& scan)
     scan.spans.resize(scan.entryCount());
     const double res = geo.height_resolution;
     const double inv_res = 1.0 / res;
-    const double beam_slope = std::tan(prm.beam_spacing_deg * M_PI / 180.0);
+    const double beam_slope = std::tan(grid.beamSpacingDeg() * M_PI / 180.0);
     const bool need_ceiling = (prm.high_height_preservation || prm.unseen_height_prior) &&
                               std::isfinite(scan.top_slope_sq);
     // tan(top beam elevation) from its signed square.

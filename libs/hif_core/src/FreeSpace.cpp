@@ -34,12 +34,13 @@ struct Judge
     Eigen::Vector3d t;  ///< sensor position, world frame
     Eigen::Matrix3d Rt;
     const uint16_t* image;  ///< centimetres (ScanWindow::Scan::image)
+    const RangeImageLayout* layout;
     double baseline = 0.0;  ///< distance to the classified scan's sensor
 
     /** Range of the nearest return in cell (r, c), metres; +inf for none. */
     [[nodiscard]] float at(int r, int c) const
     {
-        const uint16_t v = image[static_cast<std::size_t>(r) * kImageCols + c];
+        const uint16_t v = image[static_cast<std::size_t>(r) * layout->cols + c];
         return v == ScanWindow::kNoReturn ? std::numeric_limits<float>::infinity()
                                           : static_cast<float>(v) * 0.01f;
     }
@@ -52,10 +53,11 @@ View look(const Judge& j, const Eigen::Vector3d& p, double margin0, double margi
     const double rxy = std::sqrt(q.x() * q.x() + q.y() * q.y());
     if (rxy == 0.0) return View::None;
     const double tan_el = q.z() / rxy;
-    if (!(tan_el >= kTanMin && tan_el < kTanMax)) return View::None;
-    const int c = std::min(kImageCols - 1,
-                           static_cast<int>(pseudoAzimuth(q.x(), q.y()) * (kImageCols / 4.0)));
-    const int r = std::min(kImageRows - 1, static_cast<int>((tan_el - kTanMin) / kTanRes));
+    const RangeImageLayout& l = *j.layout;
+    if (!(tan_el >= l.tan_min && tan_el < l.tan_max)) return View::None;
+    const int c =
+        std::min(l.cols - 1, static_cast<int>(pseudoAzimuth(q.x(), q.y()) * (l.cols / 4.0)));
+    const int r = std::min(l.rows - 1, static_cast<int>((tan_el - l.tan_min) / l.tan_res));
     const double d = std::sqrt(rxy * rxy + q.z() * q.z());
     const double m = margin0 + margin_per_m * d;
     // The beam through the point: that of its own cell, else the nearest one around it.
@@ -67,10 +69,10 @@ View look(const Judge& j, const Eigen::Vector3d& p, double margin0, double margi
     for (int dr = -1; dr <= 1; ++dr)
     {
         const int rr = r + dr;
-        if (rr < 0 || rr >= kImageRows) continue;
+        if (rr < 0 || rr >= l.rows) continue;
         for (int dc = -1; dc <= 1; ++dc)
         {
-            const float f = j.at(rr, (c + dc + kImageCols) % kImageCols);
+            const float f = j.at(rr, (c + dc + l.cols) % l.cols);
             if (!std::isfinite(f)) continue;
             near = near || (f > d - m && f <= d + m);
             const int dist = dr * dr + dc * dc;
@@ -218,8 +220,8 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         if (self &&
             (s.id == *self || (s.id < *self ? *self - s.id : s.id - *self) > prm.free_space_window))
             continue;
-        judges.push_back(
-            {s.id, s.sensor_to_world.translation(), s.world_to_sensor_rotation, s.image.data()});
+        judges.push_back({s.id, s.sensor_to_world.translation(), s.world_to_sensor_rotation,
+                          s.image.data(), &s.layout});
     }
     if (judges.empty()) return 0;
 

@@ -31,6 +31,8 @@ Params Params::paper()
     p.high_height_preservation = false;
     p.unseen_height_prior = false;
     p.beam_spacing_deg = 0.0;
+    p.sensor_from_scans = false;
+    p.miss_needs_beam = false;
     return p;
 }
 

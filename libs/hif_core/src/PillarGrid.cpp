@@ -45,13 +45,53 @@ void PillarGrid::setThreads(std::size_t threads)
     arena_ = threads > 1 ? std::make_shared<detail::ThreadArena>(threads) : nullptr;
 }
 
+void PillarGrid::setSensorModel(std::optional<SensorModel> model)
+{
+    if (model) model->validate();
+    sensor_ = std::move(model);
+    layout_ = RangeImageLayout::forSensor(sensor_);
+    scans_since_check_ = 0;
+}
+
+double PillarGrid::beamSpacingDeg() const
+{
+    if (params_.beam_spacing_deg <= 0.0) return 0.0;
+    return sensor_ ? sensor_->vertical_spacing_deg : params_.beam_spacing_deg;
+}
+
 InsertStats PillarGrid::insertScan(const PointsView& pts, const Eigen::Isometry3d& T)
 {
+    bool estimated = false, checked = false;
+    std::optional<std::string> contradiction;
+    if (params_.sensor_from_scans)
+    {
+        if (!sensor_)
+        {
+            if (auto m = SensorModel::estimate(pts))
+            {
+                setSensorModel(std::move(m));
+                estimated = true;
+            }
+        }
+        else if (++scans_since_check_ >= kSensorCheckInterval)
+        {
+            scans_since_check_ = 0;
+            if (auto m = SensorModel::estimate(pts))
+            {
+                checked = true;
+                contradiction = sensor_->contradiction(*m);
+            }
+        }
+    }
     detail::ScanBuckets& scan = workspace_.get().scan;
     detail::bucketPoints(*this, pts, T, scan);
     detail::buildSpans(*this, scan);
-    const InsertStats st = detail::updatePillars(*this, scan);
-    if (params_.see_through_range > 0.0) detail::seeThroughMisses(*this, pts, T, scan);
+    if (detail::needsScanImage(params_)) detail::buildScanImage(*this, pts);
+    InsertStats st = detail::updatePillars(*this, scan);
+    st.sensor_estimated = estimated;
+    st.sensor_checked = checked;
+    if (contradiction) st.sensor_contradiction = *contradiction;
+    if (params_.see_through_range > 0.0) detail::seeThroughMisses(*this, T, scan);
     return st;
 }
 
@@ -146,7 +186,8 @@ void PillarGrid::setPillar(PillarIndex idx, Pillar pillar)
 bool operator==(const PillarGrid& a, const PillarGrid& b)
 {
     if (a.pillars_.size() != b.pillars_.size()) return false;
-    if (a.geometry_ != b.geometry_ || a.params_ != b.params_) return false;
+    if (a.geometry_ != b.geometry_ || a.params_ != b.params_ || a.sensor_ != b.sensor_)
+        return false;
     for (const auto& kv : a.pillars_)
     {
         const auto it = b.pillars_.find(kv.first);

@@ -5,6 +5,8 @@
  */
 #include "hif/detail/PillarUpdate.h"
 
+#include "RangeImage.h"
+
 #include <algorithm>
 #include <cstring>
 #include <limits>
@@ -59,7 +61,8 @@ std::size_t spansFromCells(const int32_t* cells, std::size_t n, int32_t gap_cell
     return count;
 }
 
-void PillarUpdater::update(Pillar& g, const Span* t, std::size_t nt, int32_t ceiling)
+void PillarUpdater::update(Pillar& g, const Span* t, std::size_t nt, int32_t ceiling,
+                           const BeamGate* gate)
 {
     const LogOddsModel& model = model_;
     std::vector<Interval>& out = pieces_;
@@ -117,6 +120,8 @@ void PillarUpdater::update(Pillar& g, const Span* t, std::size_t nt, int32_t cei
                 emit(lo, hi, gi[i].logodds);  // Eq. 16: below b_base, unknown: keep
             else if (model.hhp && lo >= ceiling)
                 emit(lo, hi, gi[i].logodds);  // HHP: above the field of view, unknown: keep
+            else if (gate && !gate->passedThrough(lo, hi))
+                emit(lo, hi, gi[i].logodds);  // no beam of the scan passed here: keep
             else
                 emit(lo, hi, gi[i].logodds + model.miss);  // Eq. 13: expected, not seen
         }

@@ -16,8 +16,8 @@ namespace hif::detail
 namespace
 {
 /** Range-image cell (imageCell(), or -1 if none) and range of points [0, n) of x/y/z. */
-void imageCellsScalar(const float* x, const float* y, const float* z, std::size_t n, int32_t* cells,
-                      float* ranges)
+void imageCellsScalar(const RangeImageLayout& l, const float* x, const float* y, const float* z,
+                      std::size_t n, int32_t* cells, float* ranges)
 {
     for (std::size_t j = 0; j < n; ++j)
     {
@@ -26,25 +26,25 @@ void imageCellsScalar(const float* x, const float* y, const float* z, std::size_
         if (!std::isfinite(sx) || !std::isfinite(sy) || !std::isfinite(sz)) continue;
         const double rxy = std::sqrt(sx * sx + sy * sy);
         if (rxy == 0.0) continue;
-        cells[j] = imageCell(pseudoAzimuth(sx, sy), sz / rxy);
+        cells[j] = imageCell(l, pseudoAzimuth(sx, sy), sz / rxy);
         ranges[j] = static_cast<float>(std::sqrt(rxy * rxy + sz * sz));
     }
 }
 
 #if HIF_X86_AVX
 /** imageCellsScalar() four points at a time: the same operations, so the same bits. */
-__attribute__((target("avx"))) void imageCellsAvx(const float* x, const float* y, const float* z,
-                                                  std::size_t n, int32_t* cells, float* ranges)
+__attribute__((target("avx"))) void imageCellsAvx(const RangeImageLayout& l, const float* x,
+                                                  const float* y, const float* z, std::size_t n,
+                                                  int32_t* cells, float* ranges)
 {
     const __m256d inf = _mm256_set1_pd(std::numeric_limits<double>::infinity());
     const __m256d zero = _mm256_setzero_pd();
     const __m256d abs_mask = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7fffffffffffffffLL));
-    const __m256d tan_min = _mm256_set1_pd(kTanMin), tan_max = _mm256_set1_pd(kTanMax);
-    const __m256d tan_res = _mm256_set1_pd(kTanRes);
-    const __m256d col_scale = _mm256_set1_pd(kImageCols / 4.0);
-    const __m256d last_col = _mm256_set1_pd(kImageCols - 1),
-                  last_row = _mm256_set1_pd(kImageRows - 1);
-    const __m256d cols = _mm256_set1_pd(kImageCols);
+    const __m256d tan_min = _mm256_set1_pd(l.tan_min), tan_max = _mm256_set1_pd(l.tan_max);
+    const __m256d tan_res = _mm256_set1_pd(l.tan_res);
+    const __m256d col_scale = _mm256_set1_pd(l.cols / 4.0);
+    const __m256d last_col = _mm256_set1_pd(l.cols - 1), last_row = _mm256_set1_pd(l.rows - 1);
+    const __m256d cols = _mm256_set1_pd(l.cols);
     const __m256d none = _mm256_set1_pd(-1.0);
     const __m256d two = _mm256_set1_pd(2.0), four = _mm256_set1_pd(4.0);
     std::size_t j = 0;
@@ -83,40 +83,41 @@ __attribute__((target("avx"))) void imageCellsAvx(const float* x, const float* y
             _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(rxy, rxy), _mm256_mul_pd(sz, sz)));
         _mm_storeu_ps(ranges + j, _mm256_cvtpd_ps(range));
     }
-    imageCellsScalar(x + j, y + j, z + j, n - j, cells + j, ranges + j);
+    imageCellsScalar(l, x + j, y + j, z + j, n - j, cells + j, ranges + j);
 }
 #endif
 
 /** imageCellsScalar(), with AVX when the CPU has it. */
-void imageCells(const float* x, const float* y, const float* z, std::size_t n, int32_t* cells,
-                float* ranges)
+void imageCells(const RangeImageLayout& l, const float* x, const float* y, const float* z,
+                std::size_t n, int32_t* cells, float* ranges)
 {
 #if HIF_X86_AVX
     if (useAvx())
     {
-        imageCellsAvx(x, y, z, n, cells, ranges);
+        imageCellsAvx(l, x, y, z, n, cells, ranges);
         return;
     }
 #endif
-    imageCellsScalar(x, y, z, n, cells, ranges);
+    imageCellsScalar(l, x, y, z, n, cells, ranges);
 }
 }  // namespace
 
 namespace
 {
-/** The nearest return of `pts` in every cell of `img` (kImageCols x kImageRows), each range
+/** The nearest return of `pts` in every cell of `img` (layout `l`), each range
  *  turned into a cell value by `value` (monotone); `none` where no return. */
 template <typename T, typename Value>
-void fillImage(const PointsView& pts, std::vector<T>& img, T none, Value value)
+void fillImage(const RangeImageLayout& l, const PointsView& pts, std::vector<T>& img, T none,
+               Value value)
 {
-    img.assign(static_cast<std::size_t>(kImageCols) * kImageRows, none);
+    img.assign(l.cells(), none);
     constexpr std::size_t kBlock = 256;
     alignas(64) int32_t cells[kBlock];
     alignas(64) float ranges[kBlock];
     for (std::size_t b0 = 0; b0 < pts.size; b0 += kBlock)
     {
         const std::size_t nb = std::min(kBlock, pts.size - b0);
-        imageCells(pts.x + b0, pts.y + b0, pts.z + b0, nb, cells, ranges);
+        imageCells(l, pts.x + b0, pts.y + b0, pts.z + b0, nb, cells, ranges);
         for (std::size_t j = 0; j < nb; ++j)
             if (cells[j] >= 0)
             {
@@ -127,15 +128,15 @@ void fillImage(const PointsView& pts, std::vector<T>& img, T none, Value value)
 }
 }  // namespace
 
-void buildRangeImage(const PointsView& pts, std::vector<float>& img)
+void buildRangeImage(const RangeImageLayout& l, const PointsView& pts, std::vector<float>& img)
 {
-    fillImage(pts, img, std::numeric_limits<float>::infinity(), [](float r) { return r; });
+    fillImage(l, pts, img, std::numeric_limits<float>::infinity(), [](float r) { return r; });
 }
 
-void buildRangeImageCm(const PointsView& pts, std::vector<uint16_t>& img)
+void buildRangeImageCm(const RangeImageLayout& l, const PointsView& pts, std::vector<uint16_t>& img)
 {
     // Ranges from 655.34 m on read as "no return" (no LiDAR of interest reaches them).
-    fillImage(pts, img, kNoReturnCm,
+    fillImage(l, pts, img, kNoReturnCm,
               [](float r)
               { return r < 655.34f ? static_cast<uint16_t>(r * 100.0f + 0.5f) : kNoReturnCm; });
 }

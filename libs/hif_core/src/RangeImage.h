@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file   RangeImage.h
- * @brief  A scan's range image for the see-through misses: the nearest return in every cell
- *         of about 0.2 x 0.2 degrees around the sensor.
+ * @brief  A scan's range image for the see-through and free-space tests: the nearest return in
+ *         every cell of directions around the sensor (RangeImageLayout: from its sensor model).
  */
 #pragma once
 
@@ -11,12 +11,15 @@
 #include <cstdint>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "hif/PillarGrid.h"
+#include "hif/SensorModel.h"
 
 namespace hif::detail
 {
 /** A monotone stand-in for the azimuth of (x, y), in [0, 4) ("diamond angle"): one division
- *  instead of an atan2. Range-image columns are uniform in it, 0.2 degree wide on average. */
+ *  instead of an atan2. Range-image columns are uniform in it. */
 inline double pseudoAzimuth(double x, double y)
 {
     const double s = std::abs(x) + std::abs(y);
@@ -25,32 +28,69 @@ inline double pseudoAzimuth(double x, double y)
     return x >= 0.0 ? (y >= 0.0 ? a : 4.0 + a) : 2.0 - a;
 }
 
-// Range image of the see-through misses: columns uniform in pseudoAzimuth(), rows uniform in
-// tan(elevation) for elevations in [-30, +15) degrees, 0.2 degree at the horizon.
-constexpr int kImageCols = 1800;
-constexpr double kTanMin = -0.57735026918962576;  // tan(-30 degrees)
-constexpr double kTanMax = 0.26794919243112270;   // tan(15 degrees)
-constexpr double kTanRes = 0.2 * M_PI / 180.0;
-constexpr int kImageRows = static_cast<int>((kTanMax - kTanMin) / kTanRes) + 1;
-
-/** Cell of the range image for (pseudo-azimuth, tan(elevation)), or -1 outside its rows. */
-inline int imageCell(double paz, double tan_el)
+/** Cell of a range image laid out as `l` for (pseudo-azimuth, tan(elevation)), or -1 outside
+ *  its rows. */
+inline int imageCell(const RangeImageLayout& l, double paz, double tan_el)
 {
-    if (!(tan_el >= kTanMin && tan_el < kTanMax)) return -1;
-    const int c = std::min(kImageCols - 1, static_cast<int>(paz * (kImageCols / 4.0)));
-    const int r = std::min(kImageRows - 1, static_cast<int>((tan_el - kTanMin) / kTanRes));
-    return r * kImageCols + c;
+    if (!(tan_el >= l.tan_min && tan_el < l.tan_max)) return -1;
+    const int c = std::min(l.cols - 1, static_cast<int>(paz * (l.cols / 4.0)));
+    const int r = std::min(l.rows - 1, static_cast<int>((tan_el - l.tan_min) / l.tan_res));
+    return r * l.cols + c;
 }
 
-/** Fills `img` (kImageCols x kImageRows, row-major) with the nearest return of `points`
+/** The see-through test of one pillar against a scan's range image (nearest return per cell,
+ *  metres): did a beam of the scan pass through heights [lo, hi) (height cells) of the pillar
+ *  whose axis is base + up * z in the sensor frame? Yes when, in the direction of the pillar's
+ *  centre between those heights, some return lies farther than the pillar by more than
+ *  `margin` and none lies within `margin` of it (something there); a return nearer than that
+ *  is occlusion and no cell with a return is no evidence. */
+struct BeamGate
+{
+    const RangeImageLayout* layout = nullptr;
+    const float* image = nullptr;
+    Eigen::Vector3d base = Eigen::Vector3d::Zero();
+    Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+    double margin = 0.0;
+    double res = 0.0;  ///< height cell, metres
+
+    [[nodiscard]] bool passedThrough(int32_t lo, int32_t hi) const
+    {
+        const RangeImageLayout& l = *layout;
+        const Eigen::Vector3d p = base + up * (lo * res);
+        const double hi_z = base.z() + up.z() * (hi * res);
+        const double d = std::sqrt(p.x() * p.x() + p.y() * p.y());
+        if (d == 0.0) return false;
+        const double paz = pseudoAzimuth(p.x(), p.y());
+        const int k0 = imageCell(l, paz, std::max(p.z() / d, l.tan_min));
+        const int k1 = imageCell(l, paz, std::min(hi_z / d, l.tan_max - 1e-12));
+        if (k0 < 0 || k1 < 0) return false;
+        bool through = false;
+        for (int k = k0; k <= k1; k += l.cols)
+        {
+            const float r = image[static_cast<std::size_t>(k)];
+            if (!std::isfinite(r)) continue;  // no return: no evidence
+            const double tan_el = l.tan_min + (k / l.cols + 0.5) * l.tan_res;
+            const double dist = d * std::sqrt(1.0 + tan_el * tan_el);  // to the pillar's axis
+            if (r > dist + margin)
+                through = true;
+            else if (r > dist - margin)
+                return false;  // something is there
+            // else: occluded by something closer, no evidence
+        }
+        return through;
+    }
+};
+
+/** Fills `img` (layout `l`, row-major) with the nearest return of `points`
  *  (sensor frame) in every cell; +infinity where no return falls. Four points at a time with
  *  AVX when useAvx() (the same bits as one at a time). */
-void buildRangeImage(const PointsView& points, std::vector<float>& img);
+void buildRangeImage(const RangeImageLayout& l, const PointsView& points, std::vector<float>& img);
 
 /** "No return" in a range image in centimetres. */
 constexpr uint16_t kNoReturnCm = 0xFFFF;
 
 /** buildRangeImage() in centimetres (rounded; kNoReturnCm where no return, or beyond 655 m). */
-void buildRangeImageCm(const PointsView& points, std::vector<uint16_t>& img);
+void buildRangeImageCm(const RangeImageLayout& l, const PointsView& points,
+                       std::vector<uint16_t>& img);
 
 }  // namespace hif::detail

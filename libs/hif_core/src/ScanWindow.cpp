@@ -29,14 +29,15 @@ void ScanWindow::checkNext(std::size_t id) const
 
 ScanWindow::Scan ScanWindow::makeScan(std::size_t id, const PointsView& points,
                                       const Eigen::Isometry3d& sensor_to_world,
-                                      std::vector<uint16_t> image)
+                                      const RangeImageLayout& layout, std::vector<uint16_t> image)
 {
     Scan s;
     s.id = id;
     s.sensor_to_world = sensor_to_world;
     s.world_to_sensor_rotation = sensor_to_world.linear().transpose();
+    s.layout = layout;
     s.image = std::move(image);
-    detail::buildRangeImageCm(points, s.image);
+    detail::buildRangeImageCm(layout, points, s.image);
     return s;
 }
 
@@ -47,7 +48,7 @@ void ScanWindow::add(Scan scan)
 }
 
 void ScanWindow::add(std::size_t id, const PointsView& points,
-                     const Eigen::Isometry3d& sensor_to_world)
+                     const Eigen::Isometry3d& sensor_to_world, const RangeImageLayout& layout)
 {
     checkNext(id);  // before the image is built
     std::vector<uint16_t> image;
@@ -56,7 +57,7 @@ void ScanWindow::add(std::size_t id, const PointsView& points,
         image = std::move(spare_.back());
         spare_.pop_back();
     }
-    add(makeScan(id, points, sensor_to_world, std::move(image)));
+    add(makeScan(id, points, sensor_to_world, layout, std::move(image)));
 }
 
 void ScanWindow::dropBefore(std::size_t first)

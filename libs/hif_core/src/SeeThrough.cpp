@@ -13,60 +13,35 @@ namespace hif::detail
 {
 namespace
 {
-/** The see-through test of one pillar, whose axis is base + up * z in the sensor frame,
- *  against the scan's range image `img`. */
-void seeThroughPillar(Pillar& pil, const Eigen::Vector3d& base, const Eigen::Vector3d& up,
-                      const std::vector<float>& img, double margin, double res,
-                      const LogOddsModel& model)
+/** The see-through misses of one pillar the scan did not hit. */
+void seeThroughPillar(Pillar& pil, const BeamGate& gate, const LogOddsModel& model)
 {
     bool changed = false;
     for (Interval& iv : pil.intervals)
-    {
-        // The beams in the pillar centre's direction between the interval's bottom and top:
-        // one that returned beyond it (by more than the margin) passed through it; one that
-        // returned near it vetoes (something is there).
-        const Eigen::Vector3d lo = base + up * (iv.lo * res);
-        const double hi_z = base.z() + up.z() * (iv.hi * res);
-        const double d = std::sqrt(lo.x() * lo.x() + lo.y() * lo.y());
-        if (d == 0.0) continue;
-        const double paz = pseudoAzimuth(lo.x(), lo.y());
-        const int k0 = imageCell(paz, std::max(lo.z() / d, kTanMin));
-        const int k1 = imageCell(paz, std::min(hi_z / d, kTanMax - 1e-12));
-        if (k0 < 0 || k1 < 0) continue;
-        bool through = false, veto = false;
-        for (int k = k0; k <= k1 && !veto; k += kImageCols)
-        {
-            const float r = img[static_cast<std::size_t>(k)];
-            if (!std::isfinite(r)) continue;  // no return: no evidence
-            const double tan_el = kTanMin + (k / kImageCols + 0.5) * kTanRes;
-            const double dist = d * std::sqrt(1.0 + tan_el * tan_el);  // to the pillar's axis
-            if (r > dist + margin)
-                through = true;
-            else if (r > dist - margin)
-                veto = true;
-            // else: occluded by something closer, no evidence
-        }
-        if (through && !veto)
+        if (gate.passedThrough(iv.lo, iv.hi))
         {
             iv.logodds = model.clamp(iv.logodds + model.miss);  // Eq. 13
             changed = true;
         }
-    }
     if (changed)
         pil.intervals.resize(joinEqualNeighbours(pil.intervals.data(), pil.intervals.size()));
 }
 }  // namespace
 
-void seeThroughMisses(PillarGrid& grid, const PointsView& pts, const Eigen::Isometry3d& T,
-                      const ScanBuckets& scan)
+bool needsScanImage(const Params& p) { return p.miss_needs_beam || p.see_through_range > 0.0; }
+
+void buildScanImage(PillarGrid& grid, const PointsView& pts)
+{
+    buildRangeImage(grid.imageLayout(), pts, GridAccess::workspace(grid).range_image);
+}
+
+void seeThroughMisses(PillarGrid& grid, const Eigen::Isometry3d& T, const ScanBuckets& scan)
 {
     Workspace& ws = GridAccess::workspace(grid);
     PillarTable& pillars = GridAccess::pillars(grid);
     const GridGeometry& geo = grid.geometry();
     const Params& prm = grid.params();
     const LogOddsModel model = LogOddsModel::fromParams(prm);
-    const std::vector<float>& img = ws.range_image;
-    buildRangeImage(pts, ws.range_image);
 
     // The map's pillars within see_through_range of the sensor that the scan did not hit.
     const double ps = geo.pillar_size;
@@ -107,9 +82,13 @@ void seeThroughMisses(PillarGrid& grid, const PointsView& pts, const Eigen::Isom
                           const double dy = geo.centreY(idx.n) - t.y();
                           if (dx * dx + dy * dy > range * range) continue;
                           // The pillar's axis in the sensor frame: base + up * z.
-                          const Eigen::Vector3d base = Rt * Eigen::Vector3d(dx, dy, -t.z());
-                          seeThroughPillar(it->second, base, up, img, margin, geo.height_resolution,
-                                           model);
+                          BeamGate gate{&grid.imageLayout(),
+                                        ws.range_image.data(),
+                                        Rt * Eigen::Vector3d(dx, dy, -t.z()),
+                                        up,
+                                        margin,
+                                        geo.height_resolution};
+                          seeThroughPillar(it->second, gate, model);
                       }
               });
 }

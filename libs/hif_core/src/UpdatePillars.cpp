@@ -5,8 +5,10 @@
  *         its creation.
  */
 #include <algorithm>
+#include <cmath>
 
 #include "GridAccess.h"
+#include "RangeImage.h"
 
 namespace hif::detail
 {
@@ -18,6 +20,22 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
     const LogOddsModel model = LogOddsModel::fromParams(grid.params());
     const std::size_t cap = grid.params().max_intervals_per_pillar;
     ws.updater.reset(model, cap);
+
+    // Params::miss_needs_beam: each pillar's gate looks along its axis in the scan's image.
+    const bool gated = grid.params().miss_needs_beam;
+    const GridGeometry& geo = grid.geometry();
+    const Eigen::Vector3d up = scan.world_to_sensor.col(2);  // world z axis, sensor frame
+    // A return beyond the pillar's footprint (half its diagonal from its axis) passed through.
+    const double margin = 0.5 * std::sqrt(2.0) * geo.pillar_size;
+    auto gateOf = [&](std::size_t p)
+    {
+        const PillarIndex idx = unpackKey(scan.keys[p]);
+        const Eigen::Vector3d axis(geo.centreX(idx.m) - scan.sensor.x(),
+                                   geo.centreY(idx.n) - scan.sensor.y(), -scan.sensor.z());
+        return BeamGate{
+            &grid.imageLayout(),  ws.range_image.data(), scan.world_to_sensor * axis, up, margin,
+            geo.height_resolution};
+    };
 
     InsertStats st;
     st.points_used = scan.points_valid;
@@ -48,9 +66,10 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
         {
             if (p + 2 * kAhead < p1) pillars.prefetch(scan.keys[p + 2 * kAhead]);
             if (p + kAhead < p1) find(p + kAhead);
-            if (targets[p])
-                updater.update(*targets[p], scan.spans.data() + scan.offsets[p],
-                               scan.span_counts[p], scan.ceilings[p]);
+            if (!targets[p]) continue;
+            const BeamGate gate = gated ? gateOf(p) : BeamGate{};
+            updater.update(*targets[p], scan.spans.data() + scan.offsets[p], scan.span_counts[p],
+                           scan.ceilings[p], gated ? &gate : nullptr);
         }
     };
     ThreadArena* arena = GridAccess::arena(grid);

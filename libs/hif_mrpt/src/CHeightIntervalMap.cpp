@@ -64,7 +64,7 @@ bool CHeightIntervalMap::internal_insertObservation(
     if (keep > 0)
     {
         // The scan and the `keep` before it: the evidence for classifying it, or a newer one.
-        window_.add(scans_inserted_, sp.view, T);
+        window_.add(scans_inserted_, sp.view, T, grid_.imageLayout());
         window_.dropBefore(scans_inserted_ >= keep ? scans_inserted_ - keep : 0);
         last_obs_ = &obs;
         last_stamp_ = obs.timestamp;
@@ -163,20 +163,22 @@ ClassifyStats CHeightIntervalMap::classify(const mrpt::obs::CObservation& obs,
 
 bool CHeightIntervalMap::addToWindow(ScanWindow& window, std::size_t id,
                                      const mrpt::obs::CObservation& obs,
-                                     const mrpt::poses::CPose3D& robotPose)
+                                     const mrpt::poses::CPose3D& robotPose) const
 {
     SensorPoints sp;
     if (!mrpt_adapter::sensorPoints(obs, sp)) return false;
-    window.add(id, sp.view, mrpt_adapter::toIsometry(robotPose + sp.sensor_pose));
+    window.add(id, sp.view, mrpt_adapter::toIsometry(robotPose + sp.sensor_pose),
+               grid_.imageLayout());
     return true;
 }
 
 std::optional<ScanWindow::Scan> CHeightIntervalMap::makeWindowScan(
-    std::size_t id, const mrpt::obs::CObservation& obs, const mrpt::poses::CPose3D& robotPose)
+    std::size_t id, const mrpt::obs::CObservation& obs, const mrpt::poses::CPose3D& robotPose) const
 {
     SensorPoints sp;
     if (!mrpt_adapter::sensorPoints(obs, sp)) return std::nullopt;
-    return ScanWindow::makeScan(id, sp.view, mrpt_adapter::toIsometry(robotPose + sp.sensor_pose));
+    return ScanWindow::makeScan(id, sp.view, mrpt_adapter::toIsometry(robotPose + sp.sensor_pose),
+                                grid_.imageLayout());
 }
 
 bool CHeightIntervalMap::internal_canComputeObservationLikelihood(

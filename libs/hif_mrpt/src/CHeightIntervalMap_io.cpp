@@ -21,8 +21,11 @@ IMPLEMENTS_SERIALIZABLE(CHeightIntervalMap, CMetricMap, hif)
 namespace
 {
 /** Version 1 added the see-through options, version 2 the free-space test and the minimum
- *  range (Field::since_version); every older version is still read. */
-constexpr uint8_t kSerializationVersion = 2;
+ *  range (Field::since_version), version 3 the sensor model (its option, and the model after
+ *  the pillars); every older version is still read. */
+constexpr uint8_t kSerializationVersion = 3;
+/** More beams than any LiDAR has: a larger count in a file is corruption. */
+constexpr uint32_t kMaxBeams = 4096;
 }  // namespace
 
 void CHeightIntervalMap::TInsertionOptions::writeToStream(mrpt::serialization::CArchive& out) const
@@ -88,6 +91,13 @@ void CHeightIntervalMap::serializeTo(mrpt::serialization::CArchive& out) const
             << static_cast<uint32_t>(pillar->intervals.size());
         for (const Interval& iv : pillar->intervals) out << iv.lo << iv.hi << iv.logodds;
     }
+    const std::optional<SensorModel>& m = grid_.sensorModel();
+    out << static_cast<uint8_t>(m ? 1 : 0);
+    if (!m) return;
+    out << static_cast<uint32_t>(m->beam_elevations_deg.size());
+    for (double e : m->beam_elevations_deg) out << e;
+    out << m->elevation_min_deg << m->elevation_max_deg << m->vertical_spacing_deg
+        << m->horizontal_resolution_deg << m->azimuth_coverage_deg;
 }
 
 void CHeightIntervalMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
@@ -120,6 +130,32 @@ void CHeightIntervalMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_
             pillar.intervals.push_back(iv);
         }
         grid_.setPillar(idx, std::move(pillar));
+    }
+    if (version >= 3)
+    {
+        uint8_t has = 0;
+        in >> has;
+        if (has > 1) THROW_EXCEPTION_FMT("Corrupt hif map: sensor model flag %u", unsigned{has});
+        if (has == 1)
+        {
+            SensorModel m;
+            uint32_t beams = 0;
+            in >> beams;
+            if (beams > kMaxBeams)
+                THROW_EXCEPTION_FMT("Corrupt hif map: a sensor model of %u beams", beams);
+            m.beam_elevations_deg.resize(beams);
+            for (double& e : m.beam_elevations_deg) in >> e;
+            in >> m.elevation_min_deg >> m.elevation_max_deg >> m.vertical_spacing_deg >>
+                m.horizontal_resolution_deg >> m.azimuth_coverage_deg;
+            try
+            {
+                grid_.setSensorModel(std::move(m));
+            }
+            catch (const std::invalid_argument& e)
+            {
+                THROW_EXCEPTION_FMT("Corrupt hif map: %s", e.what());
+            }
+        }
     }
     last_insert_ = {};
 }

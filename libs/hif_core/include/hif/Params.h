@@ -59,13 +59,21 @@ struct Params
      *  p_empty, since p_empty (Eq. 8) only speaks for the heights that were in view. */
     bool unseen_height_prior = true;
 
-    /** Range-adaptive intervals (ours; 0 = the paper's fixed merge_gap and interval_padding):
-     *  the vertical angle between neighbouring beams, degrees (HDL-64E: 0.33 to 0.5, 0.42 on
-     *  average; 0.44 measured best on the KITTI clips, see doc/algorithm.md). In a pillar
+    /** Range-adaptive intervals (ours; 0 = off, the paper's fixed merge_gap and
+     *  interval_padding): the vertical angle between neighbouring beams, degrees. In a pillar
      *  at horizontal distance d from the sensor, heights closer than d * tan(angle) are merged,
      *  and intervals are padded by half of it, so that a surface sampled by consecutive beams
-     *  stays one interval at any range. */
+     *  stays one interval at any range. Any value > 0 turns them on; the angle used is the
+     *  sensor model's vertical spacing when the map has a model (sensor_from_scans), and this
+     *  value only without one (see doc/sensors.md). */
     double beam_spacing_deg = 0.44;
+
+    /** Sensor model from the scans (ours; false = none, the paper): the map estimates its
+     *  LiDAR's beams, field of view and resolution from the first scan inserted (SensorModel),
+     *  and checks every 50th scan after against it. The model gives the range-adaptive
+     *  intervals their beam spacing and the see-through and free-space tests the layout of
+     *  their range images; without one, beam_spacing_deg and a 64-beam layout are used. */
+    bool sensor_from_scans = true;
 
     /** See-through misses (ours; 0 = off, the paper): after each scan, every interval of a
      *  pillar within this horizontal distance of the sensor (metres) that the scan did not hit
@@ -79,6 +87,14 @@ struct Params
     /** Distance, metres, that a return must lie beyond a pillar to count as passing through
      *  it; returns within it of the pillar veto the miss. */
     double see_through_margin = 2.5;
+
+    /** Misses need a beam (ours; false = the paper): an interval of a pillar the scan hit, but
+     *  not at the interval's heights, gets the Eq. 13 miss only when a beam of the scan passed
+     *  through it (the see-through test, its margin half the pillar's diagonal: the beam
+     *  returned beyond the pillar's footprint, and none within it); where the scan could not
+     *  have seen it (between two beams of a sparse LiDAR, behind something nearer, where a
+     *  non-repetitive pattern did not look this time) it is kept as it is. */
+    bool miss_needs_beam = true;
 
     /** Free-space test (ours; 0 = off, the paper): how many scans on each side of a scan
      *  (offline; online: before it) may show that its points were not there. A point was not
@@ -125,10 +141,12 @@ struct Params
     std::size_t max_intervals_per_pillar = 16;
 
     /** The fields, for loops over them (see FieldTable.h). */
-    [[nodiscard]] static const std::array<Field<Params>, 24>& fields();
+    [[nodiscard]] static const std::array<Field<Params>, 26>& fields();
 
     /** The paper's method as written: the additions above (HHP, the unseen-height prior,
-     *  range-adaptive intervals; see-through misses are off by default) off. */
+     *  range-adaptive intervals, the sensor model, misses that need a beam; see-through misses
+     *  are off by default)
+     *  off. */
     [[nodiscard]] static Params paper();
 
     /** Throws std::invalid_argument naming the first invalid field and its value. */
@@ -142,10 +160,10 @@ struct Params
     friend bool operator!=(const Params& a, const Params& b) { return !(a == b); }
 };
 
-inline const std::array<Field<Params>, 24>& Params::fields()
+inline const std::array<Field<Params>, 26>& Params::fields()
 {
     using P = Params;
-    static const std::array<Field<P>, 24> table{{
+    static const std::array<Field<P>, 26> table{{
         {"merge_gap", &P::merge_gap, Bounds::atLeast(0), 0,
          "Max gap between heights of one interval [m]"},
         {"interval_padding", &P::interval_padding, Bounds::atLeast(0), 0,
@@ -186,6 +204,10 @@ inline const std::array<Field<Params>, 24>& Params::fields()
          "Free-space test: evidence only from views within this angle [deg]"},
         {"min_range", &P::min_range, Bounds::closedOpen(0, 100), 2,
          "Points nearer the sensor are not inserted and are dynamic [m], 0 = off"},
+        {"miss_needs_beam", &P::miss_needs_beam, Bounds::any(), 3,
+         "Eq. 13 misses only where a beam of the scan passed (not in the paper)"},
+        {"sensor_from_scans", &P::sensor_from_scans, Bounds::any(), 3,
+         "Estimate the LiDAR's beams and resolution from the scans (not in the paper)"},
         {"static_threshold", &P::static_threshold, Bounds::open(0, 1), 0,
          "Static when P(static) >= this"},
         {"max_intervals_per_pillar", &P::max_intervals_per_pillar, Bounds::atLeast(1), 0,

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -21,6 +22,7 @@
 #include "hif/Pillar.h"
 #include "hif/PillarIndex.h"
 #include "hif/ScanWindow.h"
+#include "hif/SensorModel.h"
 
 namespace hif
 {
@@ -45,6 +47,13 @@ struct InsertStats
     std::size_t points_near = 0;      ///< nearer the sensor than Params::min_range: skipped
     std::size_t pillars_updated = 0;  ///< existing pillars matched by the scan
     std::size_t pillars_created = 0;  ///< pillars seen for the first time
+    /** With Params::sensor_from_scans: the model was estimated from this scan (the first one
+     *  with enough points), or this scan was checked against it. */
+    bool sensor_estimated = false;
+    bool sensor_checked = false;
+    /** Why the scan checked does not look like the model's sensor (SensorModel::
+     *  contradiction()); empty when it does or when not checked. */
+    std::string sensor_contradiction;
 };
 
 /** What one classify() found. */
@@ -141,6 +150,19 @@ public:
      *  std::invalid_argument if `params` is invalid (see Params::validateWith()). */
     void setParams(const Params& params);
 
+    /** The model of the LiDAR in effect (estimated from the first scan with
+     *  Params::sensor_from_scans, or set); none before. */
+    [[nodiscard]] const std::optional<SensorModel>& sensorModel() const { return sensor_; }
+    /** Sets the model in effect (or none). Throws std::invalid_argument if it is invalid. */
+    void setSensorModel(std::optional<SensorModel> model);
+    /** Range images' layout for the model in effect (RangeImageLayout::forSensor()). */
+    [[nodiscard]] const RangeImageLayout& imageLayout() const { return layout_; }
+    /** The range-adaptive intervals' beam spacing in effect, degrees (0 = off): the model's
+     *  vertical spacing when there is a model, else Params::beam_spacing_deg (see there). */
+    [[nodiscard]] double beamSpacingDeg() const;
+    /** Scans between two checks of a scan against the sensor model. */
+    static constexpr std::size_t kSensorCheckInterval = 50;
+
     /** Threads used by insertion and classification (default 1; more than the machine's
      *  cores run as that many). Work is split by pillar, and pillars are independent, so every
      *  thread count gives the same map bit for bit. Throws std::invalid_argument for 0. */
@@ -157,7 +179,12 @@ public:
     /** Heap memory held by the map's content: the hash table's slots and control bytes, and
      *  every pillar's interval storage (capacity). Excludes the reusable scan buffers. */
     [[nodiscard]] std::size_t memoryBytes() const;
-    void clear() { pillars_.clear(); }
+    /** Removes every pillar and the sensor model. */
+    void clear()
+    {
+        pillars_.clear();
+        setSensorModel(std::nullopt);
+    }
 
     [[nodiscard]] const Pillar* findPillar(PillarIndex idx) const;
     /** All pillars sorted by (m, n): a deterministic order for saving and drawing. */
@@ -166,7 +193,8 @@ public:
      *  pillar breaks the invariant documented on Pillar or exceeds the interval bound. */
     void setPillar(PillarIndex idx, Pillar pillar);
 
-    /** Same geometry, parameters and pillars (the thread count is not part of the map). */
+    /** Same geometry, parameters, sensor model and pillars (the thread count is not part of
+     *  the map). */
     friend bool operator==(const PillarGrid& a, const PillarGrid& b);
     /** @} */
 
@@ -180,6 +208,9 @@ private:
     std::size_t threads_ = 1;
     std::shared_ptr<detail::ThreadArena> arena_;  ///< null when threads_ == 1
     detail::WorkspaceHandle workspace_;
+    std::optional<SensorModel> sensor_;
+    RangeImageLayout layout_ = RangeImageLayout::forSensor(std::nullopt);
+    std::size_t scans_since_check_ = 0;
 
     ClassifyStats classifyImpl(const PointsView& points, std::vector<uint8_t>& is_dynamic,
                                const Eigen::Isometry3d& sensor_to_world, const ScanWindow* window,

@@ -12,6 +12,8 @@
 #include <deque>
 #include <vector>
 
+#include "hif/SensorModel.h"
+
 namespace hif
 {
 struct PointsView;
@@ -19,7 +21,7 @@ struct PointsView;
 /** Scans by number (id, increasing), each kept as its pose and its range image: the nearest
  *  return in every cell of about 0.2 x 0.2 degrees around its sensor, in centimetres. Online,
  *  hold the last free_space_window scans before the one classified; offline, the
- *  free_space_window scans on each side of it. About 0.8 MB per scan. */
+ *  free_space_window scans on each side of it. About 0.5 MB per scan of a 64-beam LiDAR. */
 class ScanWindow
 {
 public:
@@ -31,18 +33,22 @@ public:
         std::size_t id = 0;
         Eigen::Isometry3d sensor_to_world = Eigen::Isometry3d::Identity();
         Eigen::Matrix3d world_to_sensor_rotation = Eigen::Matrix3d::Identity();
-        /** detail::kImageCols x kImageRows, centimetres (up to 655.34 m), kNoReturn where no
-         *  return. */
+        /** How `image` is laid out (from the scan's sensor model). */
+        RangeImageLayout layout;
+        /** layout.cols x layout.rows, row-major, centimetres (up to 655.34 m), kNoReturn where
+         *  no return. */
         std::vector<uint16_t> image;
     };
 
-    /** Adds scan `id` (points in the sensor frame, placed by `sensor_to_world`). Ids must
-     *  increase; throws std::invalid_argument otherwise. */
-    void add(std::size_t id, const PointsView& points, const Eigen::Isometry3d& sensor_to_world);
+    /** Adds scan `id` (points in the sensor frame, placed by `sensor_to_world`), its range
+     *  image laid out as `layout`. Ids must increase; throws std::invalid_argument otherwise. */
+    void add(std::size_t id, const PointsView& points, const Eigen::Isometry3d& sensor_to_world,
+             const RangeImageLayout& layout);
     /** The costly half of add(): scan `id` with its range image built, not added, so that it
      *  can be built on another thread (into `image`'s memory, if given). */
     [[nodiscard]] static Scan makeScan(std::size_t id, const PointsView& points,
                                        const Eigen::Isometry3d& sensor_to_world,
+                                       const RangeImageLayout& layout,
                                        std::vector<uint16_t> image = {});
     /** Adds a scan made by makeScan(); ids must increase, as for add(). */
     void add(Scan scan);

@@ -80,16 +80,17 @@ public:
     ClassifyStats classify(const mrpt::obs::CObservation& obs,
                            const mrpt::poses::CPose3D& robotPose, std::vector<uint8_t>& isDynamic,
                            const ScanWindow& window, std::optional<std::size_t> self) const;
-    /** Adds an observation taken at `robotPose` to `window` as scan `id`. Returns false for an
-     *  observation type the map cannot insert. */
-    static bool addToWindow(ScanWindow& window, std::size_t id, const mrpt::obs::CObservation& obs,
-                            const mrpt::poses::CPose3D& robotPose);
+    /** Adds an observation taken at `robotPose` to `window` as scan `id`, its range image laid
+     *  out for the map's sensor model. Returns false for an observation type the map cannot
+     *  insert. */
+    bool addToWindow(ScanWindow& window, std::size_t id, const mrpt::obs::CObservation& obs,
+                     const mrpt::poses::CPose3D& robotPose) const;
     /** addToWindow() in two halves: the window's entry for the observation, built (on any
      *  thread), to be added with ScanWindow::add(). Empty for an observation type the map cannot
      *  insert. */
-    static std::optional<ScanWindow::Scan> makeWindowScan(std::size_t id,
-                                                          const mrpt::obs::CObservation& obs,
-                                                          const mrpt::poses::CPose3D& robotPose);
+    [[nodiscard]] std::optional<ScanWindow::Scan> makeWindowScan(
+        std::size_t id, const mrpt::obs::CObservation& obs,
+        const mrpt::poses::CPose3D& robotPose) const;
 
     [[nodiscard]] std::size_t pillarCount() const { return grid_.pillarCount(); }
     [[nodiscard]] std::size_t intervalCount() const { return grid_.intervalCount(); }

@@ -47,6 +47,7 @@ struct ScanBuckets
     std::vector<uint8_t> repeats;
 
     Eigen::Vector3d sensor = Eigen::Vector3d::Zero();  ///< sensor position, world frame
+    Eigen::Matrix3d world_to_sensor = Eigen::Matrix3d::Identity();  ///< rotation
     /** Top beam's elevation as the largest z * |z| / (x^2 + y^2) of the points farther than
      *  2 m horizontally (sensor frame; monotone in z / range, no square root); -inf if none. */
     double top_slope_sq = -std::numeric_limits<double>::infinity();
@@ -74,13 +75,23 @@ void bucketPoints(const PillarGrid& grid, const PointsView& points,
  *  range-adaptive gap and padding) and its field-of-view ceiling. */
 void buildSpans(const PillarGrid& grid, ScanBuckets& scan);
 
-/** Step 3: the Bayes update of every pillar of the scan (Eq. 8-18), or its creation. */
+/** Whether insertion needs the scan's range image (Params::miss_needs_beam, or the
+ *  see-through misses on). */
+[[nodiscard]] bool needsScanImage(const Params& params);
+
+/** Step 2b, when needsScanImage(): the scan's range image (sensor frame, laid out for the
+ *  grid's sensor model), kept in the grid's workspace for steps 3 and 4. */
+void buildScanImage(PillarGrid& grid, const PointsView& points);
+
+/** Step 3: the Bayes update of every pillar of the scan (Eq. 8-18), or its creation; with
+ *  Params::miss_needs_beam, an interval the scan did not hit gets its Eq. 13 miss only where
+ *  a beam of the scan passed through it (step 2b's image). */
 InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan);
 
 /** Step 4, when Params::see_through_range > 0: a miss (Eq. 13) for every interval of a pillar
  *  the scan did not hit, within see_through_range of the sensor, that a beam of the scan
- *  passed through (see Params::see_through_range). */
-void seeThroughMisses(PillarGrid& grid, const PointsView& points,
-                      const Eigen::Isometry3d& sensor_to_world, const ScanBuckets& scan);
+ *  passed through (see Params::see_through_range; step 2b's image). */
+void seeThroughMisses(PillarGrid& grid, const Eigen::Isometry3d& sensor_to_world,
+                      const ScanBuckets& scan);
 
 }  // namespace hif::detail

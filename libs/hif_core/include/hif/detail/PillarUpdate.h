@@ -62,6 +62,8 @@ std::size_t spansFromCells(const int32_t* sorted_cells, std::size_t n, int32_t g
 
 /** The Bayes update of global pillars by one scan's spans, with its reusable storage. One per
  *  thread. */
+struct BeamGate;
+
 class PillarUpdater
 {
 public:
@@ -77,8 +79,12 @@ public:
      *  capIntervals()). `ceiling` is the first height cell above what the scan could see in
      *  this pillar (kAllHeights: no limit); with the model's hhp, intervals at or above it are
      *  kept as they are, and with its unseen_prior, new intervals at or above the pillar's
-     *  previous seen_top start from the model's empty_init. */
-    void update(Pillar& g, const Span* t, std::size_t nt, int32_t ceiling = kAllHeights);
+     *  previous seen_top start from the model's empty_init. With `gate`, an interval (or the
+     *  part of it) the scan did not hit gets its Eq. 13 miss only where a beam of the scan
+     *  passed through it (BeamGate::passedThrough()); elsewhere the scan could not see it and
+     *  it is kept as it is. */
+    void update(Pillar& g, const Span* t, std::size_t nt, int32_t ceiling = kAllHeights,
+                const BeamGate* gate = nullptr);
 
     /** New settings; the storage is kept. */
     void reset(const LogOddsModel& model, std::size_t max_intervals)

@@ -1,0 +1,122 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   test_sensor_model.cpp
+ * @brief  The sensor model recovered from synthetic scans: a spinning LiDAR's beams and
+ *         resolution, a rosette's lack of rings, and misses that need a beam.
+ */
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "hif/PillarGrid.h"
+#include "hif/SensorModel.h"
+
+using namespace hif;
+
+namespace
+{
+struct Cloud
+{
+    std::vector<float> x, y, z;
+    void add(double el_deg, double az_deg, double range)
+    {
+        const double el = el_deg * M_PI / 180.0, az = az_deg * M_PI / 180.0;
+        x.push_back(static_cast<float>(range * std::cos(el) * std::cos(az)));
+        y.push_back(static_cast<float>(range * std::cos(el) * std::sin(az)));
+        z.push_back(static_cast<float>(range * std::sin(el)));
+    }
+    [[nodiscard]] PointsView view() const { return {x.data(), y.data(), z.data(), x.size()}; }
+};
+}  // namespace
+
+TEST(SensorModel, RecoversTheBeamsAndStepOfASpinningLidar)
+{
+    // 32 beams from -30.67 to +10.67 degrees, 1800 columns, every return 20 to 30 m away.
+    Cloud c;
+    std::vector<double> beams;
+    for (int b = 0; b < 32; ++b) beams.push_back(-30.67 + b * (41.34 / 31.0));
+    for (int col = 0; col < 1800; ++col)
+        for (double e : beams) c.add(e, col * 0.2, 20.0 + 10.0 * ((col * 7) % 13) / 13.0);
+    const auto m = SensorModel::estimate(c.view());
+    ASSERT_TRUE(m);
+    ASSERT_EQ(m->beam_elevations_deg.size(), 32u) << m->describe();
+    for (std::size_t b = 0; b < 32; ++b) EXPECT_NEAR(m->beam_elevations_deg[b], beams[b], 0.02);
+    EXPECT_NEAR(m->vertical_spacing_deg, 41.34 / 31.0, 0.02);
+    EXPECT_NEAR(m->horizontal_resolution_deg, 0.2, 0.01);
+    EXPECT_EQ(m->azimuth_coverage_deg, 360.0);
+    EXPECT_FALSE(m->contradiction(*m));
+    // A 16-beam scan is another sensor.
+    Cloud sparse;
+    for (int col = 0; col < 1800; ++col)
+        for (int b = 0; b < 32; b += 2) sparse.add(beams[b], col * 0.2, 25.0);
+    const auto m16 = SensorModel::estimate(sparse.view());
+    ASSERT_TRUE(m16);
+    EXPECT_EQ(m16->beam_elevations_deg.size(), 16u);
+    EXPECT_TRUE(m->contradiction(*m16));
+}
+
+TEST(SensorModel, ARosetteHasNoRingsAndALimitedFieldOfView)
+{
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    Cloud c;
+    while (c.x.size() < 10000)
+    {
+        const double a = 35.0 * u(rng), b = 35.0 * u(rng);
+        if (a * a + b * b <= 35.0 * 35.0) c.add(a, b, 15.0 + 5.0 * u(rng));
+    }
+    const auto m = SensorModel::estimate(c.view());
+    ASSERT_TRUE(m);
+    EXPECT_FALSE(m->hasRings()) << m->describe();
+    EXPECT_NEAR(m->elevation_min_deg, -35.0, 1.0);
+    EXPECT_NEAR(m->elevation_max_deg, 35.0, 1.0);
+    EXPECT_LE(m->azimuth_coverage_deg, 72.0);
+    // A 70-degree cone of 10,000 points: about 0.6 degrees between points.
+    EXPECT_NEAR(m->vertical_spacing_deg, 0.6, 0.1);
+}
+
+TEST(SensorModel, AFewPointsGiveNoModelAndTheGridEstimatesFromItsFirstScan)
+{
+    Cloud few;
+    for (int k = 0; k < 50; ++k) few.add(0.0, k, 10.0);
+    EXPECT_FALSE(SensorModel::estimate(few.view()));
+    Cloud c;
+    for (int col = 0; col < 1800; ++col)
+        for (int b = 0; b < 16; ++b) c.add(-15.0 + 2.0 * b, col * 0.2, 12.0);
+    PillarGrid grid;
+    EXPECT_FALSE(grid.insertScan(few.view()).sensor_estimated);
+    EXPECT_FALSE(grid.sensorModel());
+    EXPECT_TRUE(grid.insertScan(c.view()).sensor_estimated);
+    ASSERT_TRUE(grid.sensorModel());
+    EXPECT_EQ(grid.sensorModel()->beam_elevations_deg.size(), 16u);
+    EXPECT_NEAR(grid.beamSpacingDeg(), 2.0, 0.01);  // not beam_spacing_deg's 0.44
+    EXPECT_EQ(grid.imageLayout(), RangeImageLayout::forSensor(grid.sensorModel()));
+    Params paper = Params::paper();
+    PillarGrid p(GridGeometry(), paper);
+    EXPECT_FALSE(p.insertScan(c.view()).sensor_estimated);
+    EXPECT_FALSE(p.sensorModel());
+}
+
+TEST(MissNeedsBeam, AnIntervalNoBeamPassedIsKeptAndOneSeenThroughDecays)
+{
+    // Scan 0: a box at 1 m in pillar (10, 0). Scans 1-5: the ground there, and either nothing
+    // in the box's direction (no beam passed) or a return twice as far along it.
+    for (const bool through : {false, true})
+    {
+        PillarGrid grid;
+        const std::vector<float> x0{10.5f, 10.5f}, y0{0.5f, 0.5f}, z0{0.0f, 1.0f};
+        grid.insertScan({x0.data(), y0.data(), z0.data(), x0.size()});
+        std::vector<float> x{10.5f}, y{0.5f}, z{0.0f};
+        if (through)
+        {
+            x.push_back(21.0f);
+            y.push_back(1.0f);
+            z.push_back(2.0f);
+        }
+        for (int s = 0; s < 5; ++s) grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+        EXPECT_EQ(grid.isStatic(10.5, 0.5, 1.0), !through) << "through " << through;
+        EXPECT_TRUE(grid.isStatic(10.5, 0.5, 0.0));
+    }
+}
