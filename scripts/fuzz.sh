@@ -1,22 +1,20 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # Builds the libFuzzer targets of tests/fuzz with clang (+ AddressSanitizer and
-# UndefinedBehaviorSanitizer) into ./build-fuzz (or $HIF_FUZZ_BUILD_DIR), then runs each for
-# $HIF_FUZZ_SECONDS seconds (default 60) from the seed corpus in tests/fuzz/corpus. The corpus
+# UndefinedBehaviorSanitizer) in the sanitizer build, ./build-sanitize (or
+# $HIF_SANITIZE_BUILD_DIR; scripts/sanitize-config.sh: after scripts/sanitize.sh they are built
+# already), then runs each for $HIF_FUZZ_SECONDS seconds (default 60) from the seed corpus in
+# tests/fuzz/corpus. The corpus
 # grown by a run is kept in the build folder (the seeds in the repository are not touched); a
 # crash leaves its input in <build>/artifacts/ and fails the script.
 #   bash scripts/fuzz.sh                 all targets, 60 s each
 #   HIF_FUZZ_SECONDS=600 bash scripts/fuzz.sh fuzz_pcd
 set -euo pipefail
 cd "$(dirname "$0")/.."
-BUILD_DIR=${HIF_FUZZ_BUILD_DIR:-build-fuzz}
 SECONDS_EACH=${HIF_FUZZ_SECONDS:-60}
 TARGETS=("$@")
 [ ${#TARGETS[@]} -eq 0 ] && TARGETS=(fuzz_kitti fuzz_pcd fuzz_rawlog fuzz_map)
-mkdir -p "$BUILD_DIR"
-CXX=clang++ CC=clang cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DHIF_FUZZ=ON -DHIF_SANITIZE=address,undefined -DHIF_BUILD_TESTS=OFF -DHIF_BUILD_BENCH=OFF \
-  > "$BUILD_DIR/configure.log" 2>&1 || { cat "$BUILD_DIR/configure.log"; exit 1; }
+source scripts/sanitize-config.sh
 start=$(date +%s)
 cmake --build "$BUILD_DIR" -j "$(nproc)" --target "${TARGETS[@]}"
 echo "[fuzz] built in $(( $(date +%s) - start )) s"

@@ -624,6 +624,10 @@ json cleanAndScore(const std::string& seq, const std::string& name, const std::s
 // the static scene.
 TEST(Walkers, SyntheticWalkersAreRemovedOfflineAndOnline)
 {
+    if (HIF_SANITIZED)
+        GTEST_SKIP() << "removal floors: the plain suite (scripts/test.sh) checks them; under the "
+                        "sanitizers the same pipeline runs in SyntheticPipeline.* (this test "
+                        "takes 45 s there)";
     const WorkDir work = workDir("walkers_" + std::to_string(getpid()));
     for (const auto& [speed, seed] : {std::pair{"0", "3"}, std::pair{"3", "2"}})
     {
@@ -653,6 +657,10 @@ TEST(Walkers, SyntheticWalkersAreRemovedOfflineAndOnline)
 // test's.
 TEST(Cyclists, SyntheticCyclistsAreRemovedOfflineAndOnline)
 {
+    if (HIF_SANITIZED)
+        GTEST_SKIP() << "removal floors: the plain suite (scripts/test.sh) checks them; under the "
+                        "sanitizers the same pipeline runs in SyntheticPipeline.* (this test "
+                        "takes 45 s there)";
     const WorkDir work = workDir("cyclists_" + std::to_string(getpid()));
     const std::string seq = work.path() + "/v3";
     ASSERT_NO_FATAL_FAILURE(makeClip(seq, "cyclists", "3", "2"));

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file   test_sensor_model.cpp
- * @brief  The sensor model recovered from synthetic scans: a spinning LiDAR's beams and
- *         resolution, a rosette's lack of rings, and misses that need a beam.
+ * @brief  The sensor model recovered from synthetic and real scans: a spinning LiDAR's beams
+ *         and resolution, a rosette's lack of rings, KITTI's HDL-64E and its sparser copies;
+ *         and misses that need a beam.
  */
 #include <gtest/gtest.h>
 
@@ -12,6 +13,9 @@
 
 #include "hif/PillarGrid.h"
 #include "hif/SensorModel.h"
+#include "hif/io/KittiSequence.h"
+#include "hif/io/Rings.h"
+#include "kitti_fixture.h"
 
 using namespace hif;
 
@@ -118,5 +122,47 @@ TEST(MissNeedsBeam, AnIntervalNoBeamPassedIsKeptAndOneSeenThroughDecays)
         for (int s = 0; s < 5; ++s) grid.insertScan({x.data(), y.data(), z.data(), x.size()});
         EXPECT_EQ(grid.isStatic(10.5, 0.5, 1.0), !through) << "through " << through;
         EXPECT_TRUE(grid.isStatic(10.5, 0.5, 0.0));
+    }
+}
+
+TEST(SensorModel, RecoversKittisHdl64eAndItsSparserCopies)
+{
+    for (const char* seq : {"01", "03", "04", "08"})
+    {
+        SCOPED_TRACE(seq);
+        const std::string dir = test::kittiRoot() + "/sequences/" + seq;
+        HIF_REQUIRE_KITTI_SEQUENCE(dir);
+        const io::KittiSequence kitti(dir);
+        const io::Cloud scan = kitti.readScan(0);
+        const auto m = SensorModel::estimate(
+            {scan.x.data(), scan.y.data(), scan.z.data(), scan.size()});
+        ASSERT_TRUE(m);
+        // The HDL-64E: 64 beams from -24.9 to +2 degrees, 0.33 to 0.5 apart; about 2,000
+        // points a turn. Its lowest beams reach the ground within 2 m of the car, and go
+        // unused, hence the lowest ring found above -24.9.
+        EXPECT_NEAR(static_cast<double>(m->beam_elevations_deg.size()), 64.0, 1.0)
+            << m->describe();
+        EXPECT_NEAR(m->vertical_spacing_deg, 0.4, 0.05);
+        EXPECT_NEAR(m->horizontal_resolution_deg, 0.175, 0.02);
+        EXPECT_NEAR(m->elevation_min_deg, -24.0, 1.0);
+        EXPECT_NEAR(m->elevation_max_deg, 2.3, 1.0);
+        EXPECT_EQ(m->azimuth_coverage_deg, 360.0);
+        // Every 4th ring kept (as a 16-beam LiDAR): 16 beams, four times as far apart.
+        const std::vector<uint32_t> ring = io::ringOfEachPoint(scan);
+        io::Cloud sparse;
+        for (std::size_t i = 0; i < scan.size(); ++i)
+            if (ring[i] % 4 == 0)
+            {
+                sparse.x.push_back(scan.x[i]);
+                sparse.y.push_back(scan.y[i]);
+                sparse.z.push_back(scan.z[i]);
+            }
+        const auto m16 = SensorModel::estimate(
+            {sparse.x.data(), sparse.y.data(), sparse.z.data(), sparse.x.size()});
+        ASSERT_TRUE(m16);
+        EXPECT_NEAR(static_cast<double>(m16->beam_elevations_deg.size()), 16.0, 1.0)
+            << m16->describe();
+        EXPECT_NEAR(m16->vertical_spacing_deg, 1.6, 0.25);
+        EXPECT_TRUE(m->contradiction(*m16)) << "a 16-beam scan is not the 64-beam sensor";
     }
 }

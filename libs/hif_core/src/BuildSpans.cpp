@@ -21,7 +21,6 @@ void buildSpans(const PillarGrid& grid, ScanBuckets& scan)
     scan.spans.resize(scan.entryCount());
     const double res = geo.height_resolution;
     const double inv_res = 1.0 / res;
-    const double beam_slope = std::tan(grid.beamSpacingDeg() * M_PI / 180.0);
     const bool need_ceiling = (prm.high_height_preservation || prm.unseen_height_prior) &&
                               std::isfinite(scan.top_slope_sq);
     // tan(top beam elevation) from its signed square.
@@ -43,7 +42,10 @@ void buildSpans(const PillarGrid& grid, ScanBuckets& scan)
                       const double dx = geo.centreX(idx.m) - t.x();
                       const double dy = geo.centreY(idx.n) - t.y();
                       const double d = std::sqrt(dx * dx + dy * dy);
-                      const double beam_gap = d * beam_slope;  // vertical beam spacing at d
+                      // The gap between the beams that reach the pillar's middle height.
+                      const double mid_z = (cells[distinct / 2] + 0.5) * res - t.z();
+                      const double beam_gap =
+                          d * grid.beamGapSlope(d > 0.0 ? mid_z / d : 0.0);
                       const int32_t gap_cells =
                           floorCells(std::max(prm.merge_gap, beam_gap) * inv_res + 1e-9);
                       const int32_t pad_cells = ceilCells(

@@ -6,6 +6,7 @@
 #include "hif/PillarGrid.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -50,6 +51,7 @@ void PillarGrid::setSensorModel(std::optional<SensorModel> model)
     if (model) model->validate();
     sensor_ = std::move(model);
     layout_ = RangeImageLayout::forSensor(sensor_);
+    beam_tangents_ = sensor_ ? sensor_->beamTangents() : std::vector<double>{};
     scans_since_check_ = 0;
 }
 
@@ -57,6 +59,13 @@ double PillarGrid::beamSpacingDeg() const
 {
     if (params_.beam_spacing_deg <= 0.0) return 0.0;
     return sensor_ ? sensor_->vertical_spacing_deg : params_.beam_spacing_deg;
+}
+
+double PillarGrid::beamGapSlope(double tan_el) const
+{
+    if (params_.beam_spacing_deg <= 0.0) return 0.0;
+    if (sensor_) return sensor_->beamGapSlope(beam_tangents_, tan_el);
+    return std::tan(params_.beam_spacing_deg * M_PI / 180.0);
 }
 
 InsertStats PillarGrid::insertScan(const PointsView& pts, const Eigen::Isometry3d& T)

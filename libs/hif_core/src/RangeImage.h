@@ -55,18 +55,6 @@ struct BeamGate
 
     [[nodiscard]] bool passedThrough(int32_t lo, int32_t hi) const
     {
-        return test(lo, hi, true);
-    }
-    /** Whether any beam between those heights returned beyond the pillar (returns near it do
-     *  not veto): some of the pillar's free space was seen empty. */
-    [[nodiscard]] bool anyPassedThrough(int32_t lo, int32_t hi) const
-    {
-        return test(lo, hi, false);
-    }
-
-private:
-    [[nodiscard]] bool test(int32_t lo, int32_t hi, bool veto) const
-    {
         const RangeImageLayout& l = *layout;
         const Eigen::Vector3d p = base + up * (lo * res);
         const double hi_z = base.z() + up.z() * (hi * res);
@@ -84,11 +72,8 @@ private:
             const double tan_el = l.tan_min + (k / l.cols + 0.5) * l.tan_res;
             const double dist = d * std::sqrt(1.0 + tan_el * tan_el);  // to the pillar's axis
             if (r > dist + margin)
-            {
-                if (!veto) return true;
                 through = true;
-            }
-            else if (veto && r > dist - margin)
+            else if (r > dist - margin)
                 return false;  // something is there
             // else: occluded by something closer, no evidence
         }

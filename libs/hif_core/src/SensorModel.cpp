@@ -211,6 +211,22 @@ std::optional<SensorModel> SensorModel::estimateAny(const PointsView& pts)
     return m;
 }
 
+std::vector<double> SensorModel::beamTangents() const
+{
+    std::vector<double> t;
+    for (double e : beam_elevations_deg) t.push_back(std::tan(e / kDeg));
+    return t;
+}
+
+double SensorModel::beamGapSlope(const std::vector<double>& tangents, double tan_el) const
+{
+    if (tangents.size() < 2) return std::tan(vertical_spacing_deg / kDeg);
+    const auto it = std::upper_bound(tangents.begin(), tangents.end(), tan_el);
+    const std::size_t k = std::clamp<std::size_t>(
+        static_cast<std::size_t>(it - tangents.begin()), 1, tangents.size() - 1);
+    return tangents[k] - tangents[k - 1];
+}
+
 std::string SensorModel::describe() const
 {
     char buf[256];

@@ -90,9 +90,8 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
         Pillar& pil = pillars[scan.keys[p]];
         pil.logodds_empty = model.clamp(model.empty_init);
         ++st.pillars_created;
-        const BeamGate gate = gated ? gateOf(p) : BeamGate{};
         ws.updater.update(pil, scan.spans.data() + scan.offsets[p], scan.span_counts[p],
-                          scan.ceilings[p], gated ? &gate : nullptr);
+                          scan.ceilings[p]);
     }
     st.pillars_updated = np - st.pillars_created;
     return st;

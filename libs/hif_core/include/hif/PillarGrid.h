@@ -160,6 +160,11 @@ public:
     /** The range-adaptive intervals' beam spacing in effect, degrees (0 = off): the model's
      *  vertical spacing when there is a model, else Params::beam_spacing_deg (see there). */
     [[nodiscard]] double beamSpacingDeg() const;
+    /** The range-adaptive intervals' vertical gap between neighbouring beams, per metre of
+     *  horizontal distance, in the direction tan_el (elevation from the sensor): with a model
+     *  of rings, that of the two beams around it (SensorModel::beamGapSlope()); else
+     *  tan(beamSpacingDeg()); 0 when off. */
+    [[nodiscard]] double beamGapSlope(double tan_el) const;
     /** Scans between two checks of a scan against the sensor model. */
     static constexpr std::size_t kSensorCheckInterval = 50;
 
@@ -209,6 +214,7 @@ private:
     std::shared_ptr<detail::ThreadArena> arena_;  ///< null when threads_ == 1
     detail::WorkspaceHandle workspace_;
     std::optional<SensorModel> sensor_;
+    std::vector<double> beam_tangents_;  ///< sensor_->beamTangents()
     RangeImageLayout layout_ = RangeImageLayout::forSensor(std::nullopt);
     std::size_t scans_since_check_ = 0;
 

@@ -37,6 +37,13 @@ struct SensorModel
     double azimuth_coverage_deg = 0.0;
 
     [[nodiscard]] bool hasRings() const { return !beam_elevations_deg.empty(); }
+    /** tan() of the beams' elevations (ascending), for beamGapSlope(). */
+    [[nodiscard]] std::vector<double> beamTangents() const;
+    /** The vertical gap between the two beams around elevation tan_el, per metre of horizontal
+     *  distance: tan(e_k+1) - tan(e_k) for the beams e_k <= atan(tan_el) < e_k+1 (the nearest
+     *  pair outside them); without rings, tan(vertical_spacing_deg). `tangents` is
+     *  beamTangents(). */
+    [[nodiscard]] double beamGapSlope(const std::vector<double>& tangents, double tan_el) const;
     /** One line for a log: "64 beams from -24.9 to 2.0 deg, 0.42 deg apart (median), 0.17 deg
      *  horizontally, 360 deg of azimuth". */
     [[nodiscard]] std::string describe() const;
