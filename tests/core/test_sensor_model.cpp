@@ -134,14 +134,13 @@ TEST(SensorModel, RecoversKittisHdl64eAndItsSparserCopies)
         HIF_REQUIRE_KITTI_SEQUENCE(dir);
         const io::KittiSequence kitti(dir);
         const io::Cloud scan = kitti.readScan(0);
-        const auto m = SensorModel::estimate(
-            {scan.x.data(), scan.y.data(), scan.z.data(), scan.size()});
+        const auto m =
+            SensorModel::estimate({scan.x.data(), scan.y.data(), scan.z.data(), scan.size()});
         ASSERT_TRUE(m);
         // The HDL-64E: 64 beams from -24.9 to +2 degrees, 0.33 to 0.5 apart; about 2,000
         // points a turn. Its lowest beams reach the ground within 2 m of the car, and go
         // unused, hence the lowest ring found above -24.9.
-        EXPECT_NEAR(static_cast<double>(m->beam_elevations_deg.size()), 64.0, 1.0)
-            << m->describe();
+        EXPECT_NEAR(static_cast<double>(m->beam_elevations_deg.size()), 64.0, 1.0) << m->describe();
         EXPECT_NEAR(m->vertical_spacing_deg, 0.4, 0.05);
         EXPECT_NEAR(m->horizontal_resolution_deg, 0.175, 0.02);
         EXPECT_NEAR(m->elevation_min_deg, -24.0, 1.0);

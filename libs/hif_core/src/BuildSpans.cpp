@@ -44,8 +44,7 @@ void buildSpans(const PillarGrid& grid, ScanBuckets& scan)
                       const double d = std::sqrt(dx * dx + dy * dy);
                       // The gap between the beams that reach the pillar's middle height.
                       const double mid_z = (cells[distinct / 2] + 0.5) * res - t.z();
-                      const double beam_gap =
-                          d * grid.beamGapSlope(d > 0.0 ? mid_z / d : 0.0);
+                      const double beam_gap = d * grid.beamGapSlope(d > 0.0 ? mid_z / d : 0.0);
                       const int32_t gap_cells =
                           floorCells(std::max(prm.merge_gap, beam_gap) * inv_res + 1e-9);
                       const int32_t pad_cells = ceilCells(

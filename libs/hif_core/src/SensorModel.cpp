@@ -222,8 +222,8 @@ double SensorModel::beamGapSlope(const std::vector<double>& tangents, double tan
 {
     if (tangents.size() < 2) return std::tan(vertical_spacing_deg / kDeg);
     const auto it = std::upper_bound(tangents.begin(), tangents.end(), tan_el);
-    const std::size_t k = std::clamp<std::size_t>(
-        static_cast<std::size_t>(it - tangents.begin()), 1, tangents.size() - 1);
+    const std::size_t k = std::clamp<std::size_t>(static_cast<std::size_t>(it - tangents.begin()),
+                                                  1, tangents.size() - 1);
     return tangents[k] - tangents[k - 1];
 }
 
