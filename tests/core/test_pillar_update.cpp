@@ -268,7 +268,12 @@ TEST(PillarUpdate, IntervalCountStaysBoundedOverThousandsOfScans)
 
 TEST(PillarGrid, NewPillarTakesThePriorThenOneObservation)
 {
-    PillarGrid grid;
+    // The paper's arithmetic (Eq. 8, 14): p_empty falls with every scan that hits the pillar.
+    // With miss_needs_beam it falls only when a beam passed through the pillar, which these
+    // two points do not give (test_sensor_model.cpp has that case).
+    Params prm;
+    prm.miss_needs_beam = false;
+    PillarGrid grid(GridGeometry(), prm);
     const std::vector<float> x = {-0.5f, -0.5f}, y = {-0.5f, -0.5f}, z = {0.0f, 1.0f};
     const InsertStats st = grid.insertScan({x.data(), y.data(), z.data(), x.size()});
     EXPECT_EQ(st.points_used, 2u);

@@ -165,3 +165,33 @@ TEST(SensorModel, RecoversKittisHdl64eAndItsSparserCopies)
         EXPECT_TRUE(m->contradiction(*m16)) << "a 16-beam scan is not the 64-beam sensor";
     }
 }
+
+TEST(MissNeedsBeam, PEmptyFallsOnlyWhenABeamPassedThroughThePillar)
+{
+    // Pillar (10, 0) holds a wall face at 0-1 m. Scans 1-5 see the wall again at 0 m only:
+    // with nothing beyond it, no beam passes through the pillar and its p_empty (the prior of
+    // heights seen there for the first time, Eq. 14) stays; a return twice as far along the
+    // direction of the pillar's top lowers it, as Eq. 8 always does without the gate.
+    const std::vector<float> x0{10.5f, 10.5f}, y0{0.5f, 0.5f}, z0{0.0f, 1.0f};
+    float kept = 0.0f, lowered = 0.0f;
+    for (const bool through : {false, true})
+    {
+        PillarGrid grid;
+        grid.insertScan({x0.data(), y0.data(), z0.data(), x0.size()});
+        std::vector<float> x{10.5f}, y{0.5f}, z{0.0f};
+        if (through)
+        {
+            x.push_back(21.0f);
+            y.push_back(1.0f);
+            z.push_back(2.0f);
+        }
+        for (int s = 0; s < 5; ++s) grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+        (through ? lowered : kept) = grid.findPillar({10, 0})->logodds_empty;
+    }
+    const Params p;
+    EXPECT_FLOAT_EQ(kept, static_cast<float>(std::log(p.p_empty_init / (1 - p.p_empty_init))))
+        << "never lowered: no scan passed a beam through the pillar";
+    EXPECT_FLOAT_EQ(lowered,
+                    kept + 5.0f * static_cast<float>(std::log((1 - p.alpha) / (1 - p.beta))))
+        << "lowered by each of the 5 scans that saw through it (Eq. 8)";
+}

@@ -72,6 +72,26 @@ void PillarUpdater::update(Pillar& g, const Span* t, std::size_t nt, int32_t cei
     const std::size_t ng = g.intervals.size();
     // LHP (Eq. 15): b_base is the lowest height the scan saw in this pillar.
     const int32_t base = nt > 0 ? t[0].lo : std::numeric_limits<int32_t>::max();
+    // Eq. 8 below: the pillar's free space seen empty again; with the gate, only when a beam of
+    // the scan passed through the pillar between its lowest content and the top of the view.
+    bool seen_empty = true;
+    if (gate && (ng > 0 || nt > 0))
+    {
+        int32_t lo = std::numeric_limits<int32_t>::max();
+        int32_t hi = std::numeric_limits<int32_t>::min();
+        if (ng > 0)
+        {
+            lo = gi[0].lo;
+            hi = gi[ng - 1].hi;
+        }
+        if (nt > 0)
+        {
+            lo = std::min(lo, t[0].lo);
+            hi = std::max(hi, t[nt - 1].hi);
+        }
+        if (ceiling != kAllHeights) hi = std::max(hi, ceiling);
+        seen_empty = gate->anyPassedThrough(lo, hi);
+    }
 
     // The sweep below yields at most 2 (ng + nt) - 1 pieces. They are written field by field
     // through a pointer: building each Interval as a temporary and copying it costs a
@@ -145,7 +165,7 @@ void PillarUpdater::update(Pillar& g, const Span* t, std::size_t nt, int32_t cei
         g.intervals.reserve(c);
     }
     g.intervals.assign(o, o + count);
-    g.logodds_empty = model.clamp(empty_prior + model.miss);  // Eq. 8
+    if (seen_empty) g.logodds_empty = model.clamp(empty_prior + model.miss);  // Eq. 8
     g.seen_top = std::max(seen_top, ceiling);
 }
 

@@ -41,9 +41,9 @@ inline int imageCell(const RangeImageLayout& l, double paz, double tan_el)
 /** The see-through test of one pillar against a scan's range image (nearest return per cell,
  *  metres): did a beam of the scan pass through heights [lo, hi) (height cells) of the pillar
  *  whose axis is base + up * z in the sensor frame? Yes when, in the direction of the pillar's
- *  centre between those heights, some return lies farther than the pillar by more than
- *  `margin` and none lies within `margin` of it (something there); a return nearer than that
- *  is occlusion and no cell with a return is no evidence. */
+ *  centre (and half_cols columns on each side) between those heights, some return lies farther
+ *  than the pillar by more than `margin` and none lies within `margin` of it (something
+ *  there); a return nearer than that is occlusion and no cell with a return is no evidence. */
 struct BeamGate
 {
     const RangeImageLayout* layout = nullptr;
@@ -51,9 +51,19 @@ struct BeamGate
     Eigen::Vector3d base = Eigen::Vector3d::Zero();
     Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
     double margin = 0.0;
-    double res = 0.0;  ///< height cell, metres
+    double res = 0.0;   ///< height cell, metres
+    int half_cols = 0;  ///< columns looked along on each side of the centre's
 
-    [[nodiscard]] bool passedThrough(int32_t lo, int32_t hi) const
+    [[nodiscard]] bool passedThrough(int32_t lo, int32_t hi) const { return test(lo, hi, true); }
+    /** Whether any beam between those heights returned beyond the pillar (returns near it do
+     *  not veto): some of the pillar's free space was seen empty. */
+    [[nodiscard]] bool anyPassedThrough(int32_t lo, int32_t hi) const
+    {
+        return test(lo, hi, false);
+    }
+
+private:
+    [[nodiscard]] bool test(int32_t lo, int32_t hi, bool veto) const
     {
         const RangeImageLayout& l = *layout;
         const Eigen::Vector3d p = base + up * (lo * res);
@@ -64,18 +74,30 @@ struct BeamGate
         const int k0 = imageCell(l, paz, std::max(p.z() / d, l.tan_min));
         const int k1 = imageCell(l, paz, std::min(hi_z / d, l.tan_max - 1e-12));
         if (k0 < 0 || k1 < 0) return false;
+        const int c0 = k0 % l.cols;
+        const double d2 = d * d;
         bool through = false;
-        for (int k = k0; k <= k1; k += l.cols)
+        // From the top row down: beams above what stands in the pillar pass first (an early
+        // end for anyPassedThrough()). Distances compared squared: no square root per row.
+        for (int row = k1 / l.cols; row >= k0 / l.cols; --row)
         {
-            const float r = image[static_cast<std::size_t>(k)];
-            if (!std::isfinite(r)) continue;  // no return: no evidence
-            const double tan_el = l.tan_min + (k / l.cols + 0.5) * l.tan_res;
-            const double dist = d * std::sqrt(1.0 + tan_el * tan_el);  // to the pillar's axis
-            if (r > dist + margin)
-                through = true;
-            else if (r > dist - margin)
-                return false;  // something is there
-            // else: occluded by something closer, no evidence
+            const double tan_el = l.tan_min + (row + 0.5) * l.tan_res;
+            const double dist2 = d2 * (1.0 + tan_el * tan_el);  // to the pillar's axis, squared
+            for (int dc = -half_cols; dc <= half_cols; ++dc)
+            {
+                const int c = (c0 + dc + l.cols) % l.cols;
+                const double r = image[static_cast<std::size_t>(row) * l.cols + c];
+                if (!std::isfinite(r)) continue;  // no return: no evidence
+                const double beyond = r - margin, near = r + margin;
+                if (beyond > 0.0 && beyond * beyond > dist2)
+                {
+                    if (!veto) return true;
+                    through = true;
+                }
+                else if (veto && near * near > dist2)
+                    return false;  // something is there
+                // else: occluded by something closer, no evidence
+            }
         }
         return through;
     }

@@ -27,14 +27,21 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
     const Eigen::Vector3d up = scan.world_to_sensor.col(2);  // world z axis, sensor frame
     // A return beyond the pillar's footprint (half its diagonal from its axis) passed through.
     const double margin = 0.5 * std::sqrt(2.0) * geo.pillar_size;
+    // The centre's column and one on each side: columns are half a horizontal step
+    // (RangeImageLayout::forSensor), so these hold the beam nearest the pillar's centre.
+    constexpr int kHalfCols = 1;
     auto gateOf = [&](std::size_t p)
     {
         const PillarIndex idx = unpackKey(scan.keys[p]);
         const Eigen::Vector3d axis(geo.centreX(idx.m) - scan.sensor.x(),
                                    geo.centreY(idx.n) - scan.sensor.y(), -scan.sensor.z());
-        return BeamGate{
-            &grid.imageLayout(),  ws.range_image.data(), scan.world_to_sensor * axis, up, margin,
-            geo.height_resolution};
+        return BeamGate{&grid.imageLayout(),
+                        ws.range_image.data(),
+                        scan.world_to_sensor * axis,
+                        up,
+                        margin,
+                        geo.height_resolution,
+                        kHalfCols};
     };
 
     InsertStats st;
@@ -90,8 +97,9 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
         Pillar& pil = pillars[scan.keys[p]];
         pil.logodds_empty = model.clamp(model.empty_init);
         ++st.pillars_created;
+        const BeamGate gate = gated ? gateOf(p) : BeamGate{};
         ws.updater.update(pil, scan.spans.data() + scan.offsets[p], scan.span_counts[p],
-                          scan.ceilings[p]);
+                          scan.ceilings[p], gated ? &gate : nullptr);
     }
     st.pillars_updated = np - st.pillars_created;
     return st;

@@ -88,12 +88,15 @@ struct Params
      *  it; returns within it of the pillar veto the miss. */
     double see_through_margin = 2.5;
 
-    /** Misses need a beam (ours; false = the paper): an interval of a pillar the scan hit, but
-     *  not at the interval's heights, gets the Eq. 13 miss only when a beam of the scan passed
-     *  through it (the see-through test, its margin half the pillar's diagonal: the beam
-     *  returned beyond the pillar's footprint, and none within it); where the scan could not
-     *  have seen it (between two beams of a sparse LiDAR, behind something nearer, where a
-     *  non-repetitive pattern did not look this time) it is kept as it is. */
+    /** Misses need a beam (ours; false = the paper): evidence of empty space only where a beam
+     *  of the scan passed. An interval of a pillar the scan hit, but not at the interval's
+     *  heights, gets the Eq. 13 miss only when a beam passed through it: in the scan's range
+     *  image, within the pillar's width as seen from the sensor, a return beyond the pillar's
+     *  footprint (half its diagonal from its axis) and none within it. And the pillar's
+     *  p_empty is lowered (Eq. 8) only when a beam passed through the pillar somewhere between
+     *  its lowest content and the top of the view. Where the scan could not have seen
+     *  (between two beams of a sparse LiDAR, behind something nearer, where a non-repetitive
+     *  pattern did not look this time) the map is kept as it is. */
     bool miss_needs_beam = true;
 
     /** Free-space test (ours; 0 = off, the paper): how many scans on each side of a scan
