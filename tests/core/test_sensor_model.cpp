@@ -103,28 +103,6 @@ TEST(SensorModel, AFewPointsGiveNoModelAndTheGridEstimatesFromItsFirstScan)
     EXPECT_FALSE(p.sensorModel());
 }
 
-TEST(MissNeedsBeam, AnIntervalNoBeamPassedIsKeptAndOneSeenThroughDecays)
-{
-    // Scan 0: a box at 1 m in pillar (10, 0). Scans 1-5: the ground there, and either nothing
-    // in the box's direction (no beam passed) or a return twice as far along it.
-    for (const bool through : {false, true})
-    {
-        PillarGrid grid;
-        const std::vector<float> x0{10.5f, 10.5f}, y0{0.5f, 0.5f}, z0{0.0f, 1.0f};
-        grid.insertScan({x0.data(), y0.data(), z0.data(), x0.size()});
-        std::vector<float> x{10.5f}, y{0.5f}, z{0.0f};
-        if (through)
-        {
-            x.push_back(21.0f);
-            y.push_back(1.0f);
-            z.push_back(2.0f);
-        }
-        for (int s = 0; s < 5; ++s) grid.insertScan({x.data(), y.data(), z.data(), x.size()});
-        EXPECT_EQ(grid.isStatic(10.5, 0.5, 1.0), !through) << "through " << through;
-        EXPECT_TRUE(grid.isStatic(10.5, 0.5, 0.0));
-    }
-}
-
 TEST(SensorModel, RecoversKittisHdl64eAndItsSparserCopies)
 {
     for (const char* seq : {"01", "03", "04", "08"})
@@ -166,28 +144,45 @@ TEST(SensorModel, RecoversKittisHdl64eAndItsSparserCopies)
     }
 }
 
-TEST(MissNeedsBeam, PEmptyFallsOnlyWhenABeamPassedThroughThePillar)
+namespace
 {
-    // Pillar (10, 0) holds a wall face at 0-1 m. Scans 1-5 see the wall again at 0 m only:
-    // with nothing beyond it, no beam passes through the pillar and its p_empty (the prior of
-    // heights seen there for the first time, Eq. 14) stays; a return twice as far along the
-    // direction of the pillar's top lowers it, as Eq. 8 always does without the gate.
+/** Scan 0: the ground and a box at 1 m in pillar (10, 0). Scans 1-5: the ground there, and
+ *  either nothing in the box's direction (no beam passed) or, `through`, a return twice as far
+ *  along it. */
+PillarGrid boxThenGround(bool through)
+{
+    PillarGrid grid;
     const std::vector<float> x0{10.5f, 10.5f}, y0{0.5f, 0.5f}, z0{0.0f, 1.0f};
-    float kept = 0.0f, lowered = 0.0f;
+    grid.insertScan({x0.data(), y0.data(), z0.data(), x0.size()});
+    std::vector<float> x{10.5f}, y{0.5f}, z{0.0f};
+    if (through)
+    {
+        x.push_back(21.0f);
+        y.push_back(1.0f);
+        z.push_back(2.0f);
+    }
+    for (int s = 0; s < 5; ++s) grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+    return grid;
+}
+}  // namespace
+
+TEST(MissNeedsBeam, AnIntervalNoBeamPassedIsKeptAndOneSeenThroughDecays)
+{
     for (const bool through : {false, true})
     {
-        PillarGrid grid;
-        grid.insertScan({x0.data(), y0.data(), z0.data(), x0.size()});
-        std::vector<float> x{10.5f}, y{0.5f}, z{0.0f};
-        if (through)
-        {
-            x.push_back(21.0f);
-            y.push_back(1.0f);
-            z.push_back(2.0f);
-        }
-        for (int s = 0; s < 5; ++s) grid.insertScan({x.data(), y.data(), z.data(), x.size()});
-        (through ? lowered : kept) = grid.findPillar({10, 0})->logodds_empty;
+        const PillarGrid grid = boxThenGround(through);
+        EXPECT_EQ(grid.isStatic(10.5, 0.5, 1.0), !through) << "through " << through;
+        EXPECT_TRUE(grid.isStatic(10.5, 0.5, 0.0));
     }
+}
+
+TEST(MissNeedsBeam, PEmptyFallsOnlyWhenABeamPassedThroughThePillar)
+{
+    // With nothing beyond the box, no beam passes through the pillar and its p_empty (the
+    // prior of heights seen there for the first time, Eq. 14) stays; a return twice as far
+    // along the box's direction lowers it, as Eq. 8 always does without the gate.
+    const float kept = boxThenGround(false).findPillar({10, 0})->logodds_empty;
+    const float lowered = boxThenGround(true).findPillar({10, 0})->logodds_empty;
     const Params p;
     EXPECT_FLOAT_EQ(kept, static_cast<float>(std::log(p.p_empty_init / (1 - p.p_empty_init))))
         << "never lowered: no scan passed a beam through the pillar";
