@@ -95,7 +95,8 @@ TEST(SensorModel, AFewPointsGiveNoModelAndTheGridEstimatesFromItsFirstScan)
     EXPECT_TRUE(grid.insertScan(c.view()).sensor_estimated);
     ASSERT_TRUE(grid.sensorModel());
     EXPECT_EQ(grid.sensorModel()->beam_elevations_deg.size(), 16u);
-    EXPECT_NEAR(grid.beamSpacingDeg(), 2.0, 0.01);  // not beam_spacing_deg's 0.44
+    // The gap of the beams at -1 and +1 degrees around the horizon, not beam_spacing_deg's 0.44.
+    EXPECT_NEAR(grid.beamGapSlope(0.0), std::tan(M_PI / 180.0) - std::tan(-M_PI / 180.0), 1e-4);
     EXPECT_EQ(grid.imageLayout(), RangeImageLayout::forSensor(grid.sensorModel()));
     Params paper = Params::paper();
     PillarGrid p(GridGeometry(), paper);

@@ -55,12 +55,6 @@ void PillarGrid::setSensorModel(std::optional<SensorModel> model)
     scans_since_check_ = 0;
 }
 
-double PillarGrid::beamSpacingDeg() const
-{
-    if (params_.beam_spacing_deg <= 0.0) return 0.0;
-    return sensor_ ? sensor_->vertical_spacing_deg : params_.beam_spacing_deg;
-}
-
 double PillarGrid::beamGapSlope(double tan_el) const
 {
     if (params_.beam_spacing_deg <= 0.0) return 0.0;

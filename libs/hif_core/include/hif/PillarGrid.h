@@ -157,13 +157,10 @@ public:
     void setSensorModel(std::optional<SensorModel> model);
     /** Range images' layout for the model in effect (RangeImageLayout::forSensor()). */
     [[nodiscard]] const RangeImageLayout& imageLayout() const { return layout_; }
-    /** The range-adaptive intervals' beam spacing in effect, degrees (0 = off): the model's
-     *  vertical spacing when there is a model, else Params::beam_spacing_deg (see there). */
-    [[nodiscard]] double beamSpacingDeg() const;
     /** The range-adaptive intervals' vertical gap between neighbouring beams, per metre of
      *  horizontal distance, in the direction tan_el (elevation from the sensor): with a model
-     *  of rings, that of the two beams around it (SensorModel::beamGapSlope()); else
-     *  tan(beamSpacingDeg()); 0 when off. */
+     *  of rings, that of the two beams around it (SensorModel::beamGapSlope()); without a
+     *  model, tan(Params::beam_spacing_deg); 0 when off (beam_spacing_deg 0). */
     [[nodiscard]] double beamGapSlope(double tan_el) const;
     /** Scans between two checks of a scan against the sensor model. */
     static constexpr std::size_t kSensorCheckInterval = 50;
