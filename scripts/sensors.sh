@@ -22,6 +22,7 @@ SEED=${HIF_SENSORS_SEED:-1}
 for app in hif-synthetic-kitti hif-clean hif-eval; do
   [ -x "$BIN/$app" ] || { echo "[sensors] $BIN/$app not built: run bash scripts/build.sh" >&2; exit 1; }
 done
+mkdir -p "$ROOT/runs"
 printf "%-8s %-9s %7s %7s %7s %7s %7s %7s\n" sensor scene SA DA AA car cyclist person
 for sensor in $SENSORS; do
   for scene in $SCENES; do

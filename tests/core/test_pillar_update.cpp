@@ -600,6 +600,79 @@ TEST(SeeThroughMisses, BeamsThatPassedThroughAPillarEmptyIt)
     EXPECT_TRUE(carStaticAfterReturns(15.0, {40.0}));
 }
 
+TEST(SeeThroughMisses, ABeamThroughAnIntervalsPaddingEmptiesOnlyTheHeightsItCrossed)
+{
+    // A sparse LiDAR (beams 2 degrees apart): at 20.5 m, ground hit by one beam becomes an
+    // interval padded by half the 0.72 m gap between beams, above and below. A beam of the
+    // next scan that passes 0.25 m above the ground (to land farther on) crosses that padding,
+    // not the ground: it shows only the heights it crossed empty.
+    Params prm;
+    prm.sensor_from_scans = false;
+    prm.beam_spacing_deg = 2.0;
+    prm.see_through_range = 40.0;
+    PillarGrid grid(GridGeometry(), prm);
+    std::vector<float> x, y, z;
+    for (double dy = 0.05; dy < 1.0; dy += 0.1)
+    {
+        x.push_back(20.5f);
+        y.push_back(float(dy));
+        z.push_back(-1.7f);
+    }
+    grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+    const Pillar& ground = *grid.findPillar({20, 0});
+    ASSERT_EQ(ground.intervals.size(), 1u);
+    EXPECT_GT(ground.intervals[0].hi * 0.05, -1.7 + 0.3) << "padded by the beams' gap";
+    x.clear(), y.clear(), z.clear();
+    beamsToward(20.5, 0.5, -1.45, -1.45, 40.0, x, y, z);
+    ASSERT_EQ(x.size(), 1u);
+    grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+    EXPECT_TRUE(grid.isStatic(20.5, 0.5, -1.7)) << "the ground, which the beam did not reach";
+    EXPECT_FALSE(grid.isStatic(20.5, 0.5, -1.45)) << "the heights the beam crossed";
+    EXPECT_TRUE(grid.isStatic(20.5, 0.5, -1.55)) << "padding the beam did not cross";
+}
+
+namespace
+{
+/** A wall from -1.5 m to 1.5 m in pillar (20, 0), hit by a dense scan, under a sparse model
+ *  (beams 2 degrees apart: padded by 0.36 m at 20.5 m); then one scan of beams at `heights`
+ *  (at the pillar), each returning 40 m away. Is height `z` of the wall still static? */
+bool wallStaticAfter(const std::vector<double>& heights, double z)
+{
+    Params prm;
+    prm.sensor_from_scans = false;
+    prm.beam_spacing_deg = 2.0;
+    prm.see_through_range = 40.0;
+    PillarGrid grid(GridGeometry(), prm);
+    std::vector<float> x, y, z_;
+    for (double h = -1.5; h <= 1.5; h += 0.05)
+    {
+        x.push_back(20.5f);
+        y.push_back(0.5f);
+        z_.push_back(float(h));
+    }
+    grid.insertScan({x.data(), y.data(), z_.data(), x.size()});
+    EXPECT_EQ(grid.findPillar({20, 0})->intervals.size(), 1u);
+    x.clear(), y.clear(), z_.clear();
+    for (const double h : heights) beamsToward(20.5, 0.5, h, h, 40.0, x, y, z_);
+    grid.insertScan({x.data(), y.data(), z_.data(), x.size()});
+    return grid.isStatic(20.5, 0.5, z);
+}
+}  // namespace
+
+TEST(SeeThroughMisses, NeighbouringBeamsThatBothPassedEmptyTheHeightsBetweenThem)
+{
+    // Beams 0.2 m apart (0.56 degrees: neighbours for a 2-degree sensor) through the padding
+    // above the wall's top: what lies between them is empty too. One of them alone shows
+    // only its own heights.
+    EXPECT_FALSE(wallStaticAfter({1.6, 1.8}, 1.7));
+    EXPECT_TRUE(wallStaticAfter({1.6}, 1.7));
+    EXPECT_FALSE(wallStaticAfter({1.6}, 1.6));
+    // A beam through what was seen of the wall (its core, inside the padding) shows all of
+    // it gone: one object, seen through.
+    EXPECT_FALSE(wallStaticAfter({0.0}, -1.2));
+    EXPECT_TRUE(wallStaticAfter({1.6}, 1.2)) << "the padding's beam says nothing of the wall";
+}
+
 TEST(SeeThroughMisses, AReturnNearThePillarVetoesBeamsThatPassedThroughIt)
 {
     // The lower beams pass through (return 20 m beyond); the upper ones return just behind the

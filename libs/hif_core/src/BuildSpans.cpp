@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "GridAccess.h"
-#include "HeightCells.h"
+#include "RangeImage.h"
 
 namespace hif::detail
 {
@@ -20,7 +20,6 @@ void buildSpans(const PillarGrid& grid, ScanBuckets& scan)
     scan.span_counts.resize(np);
     scan.spans.resize(scan.entryCount());
     const double res = geo.height_resolution;
-    const double inv_res = 1.0 / res;
     const bool need_ceiling = (prm.high_height_preservation || prm.unseen_height_prior) &&
                               std::isfinite(scan.top_slope_sq);
     // tan(top beam elevation) from its signed square.
@@ -44,13 +43,10 @@ void buildSpans(const PillarGrid& grid, ScanBuckets& scan)
                       const double d = std::sqrt(dx * dx + dy * dy);
                       // The gap between the beams that reach the pillar's middle height.
                       const double mid_z = (cells[distinct / 2] + 0.5) * res - t.z();
-                      const double beam_gap = d * grid.beamGapSlope(d > 0.0 ? mid_z / d : 0.0);
-                      const int32_t gap_cells =
-                          floorCells(std::max(prm.merge_gap, beam_gap) * inv_res + 1e-9);
-                      const int32_t pad_cells = ceilCells(
-                          std::max(prm.interval_padding, 0.5 * beam_gap) * inv_res - 1e-9);
-                      scan.span_counts[p] = static_cast<uint32_t>(spansFromCells(
-                          cells, distinct, gap_cells, pad_cells, scan.spans.data() + b));
+                      const IntervalWidths w =
+                          IntervalWidths::of(grid, d, d > 0.0 ? mid_z / d : 0.0);
+                      scan.span_counts[p] = static_cast<uint32_t>(
+                          spansFromCells(cells, distinct, w.gap, w.pad, scan.spans.data() + b));
 
                       int32_t ceiling = kAllHeights;
                       if (need_ceiling)

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "Parallel.h"
+#include "RangeImage.h"
 #include "hif/PillarGrid.h"
 #include "hif/detail/InsertSteps.h"
 
@@ -23,7 +24,7 @@ struct Workspace
     ScanBuckets scan;
     std::vector<Pillar*> targets;              ///< per scan pillar: its map pillar, or null
     PillarUpdater updater{LogOddsModel(), 1};  ///< reset at every insertion
-    std::vector<float> range_image;            ///< see-through misses
+    std::vector<BeamReturn> range_image;       ///< the scan's returns (miss gates)
     std::vector<uint8_t> hit;                  ///< see-through misses: pillars the scan hit
 };
 

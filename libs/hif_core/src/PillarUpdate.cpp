@@ -93,11 +93,12 @@ void PillarUpdater::update(Pillar& g, const Span* t, std::size_t nt, int32_t cei
         seen_empty = gate->anyPassedThrough(lo, hi);
     }
 
-    // The sweep below yields at most 2 (ng + nt) - 1 pieces. They are written field by field
-    // through a pointer: building each Interval as a temporary and copying it costs a
-    // store-forwarding stall per piece.
+    // The sweep below yields at most 2 (ng + nt) - 1 pieces, and two more for each run of
+    // heights a beam passed through (the gate). They are written field by field through a
+    // pointer: building each Interval as a temporary and copying it costs a store-forwarding
+    // stall per piece.
     if (out.size() < 2 * (ng + nt)) out.resize(2 * (ng + nt));  // grows, never shrinks
-    Interval* const o = out.data();
+    Interval* o = out.data();
     std::size_t count = 0;
     auto emit = [&](int32_t lo, int32_t hi, float l)
     {
@@ -106,6 +107,11 @@ void PillarUpdater::update(Pillar& g, const Span* t, std::size_t nt, int32_t cei
         {
             o[count - 1].hi = hi;  // lossless: both halves carry the same belief
             return;
+        }
+        if (count == out.size())
+        {
+            out.resize(2 * out.size());
+            o = out.data();
         }
         o[count].lo = lo;
         o[count].hi = hi;
@@ -140,8 +146,21 @@ void PillarUpdater::update(Pillar& g, const Span* t, std::size_t nt, int32_t cei
                 emit(lo, hi, gi[i].logodds);  // Eq. 16: below b_base, unknown: keep
             else if (model.hhp && lo >= ceiling)
                 emit(lo, hi, gi[i].logodds);  // HHP: above the field of view, unknown: keep
-            else if (gate && !gate->passedThrough(lo, hi))
-                emit(lo, hi, gi[i].logodds);  // no beam of the scan passed here: keep
+            else if (gate)
+            {
+                // Eq. 13 where beams of the scan passed through; elsewhere the scan could not
+                // see: keep (BeamGate::floorOrObject()).
+                const Span core = gate->floorOrObject(gi, i, lo, hi);
+                gate->passedCells(lo, hi, {std::max(core.lo, lo), std::min(core.hi, hi)}, passed_);
+                int32_t at = lo;
+                for (const Span& s : passed_)
+                {
+                    if (s.lo > at) emit(at, s.lo, gi[i].logodds);
+                    emit(s.lo, s.hi, gi[i].logodds + model.miss);
+                    at = s.hi;
+                }
+                if (at < hi) emit(at, hi, gi[i].logodds);
+            }
             else
                 emit(lo, hi, gi[i].logodds + model.miss);  // Eq. 13: expected, not seen
         }

@@ -15,9 +15,10 @@ namespace hif::detail
 {
 namespace
 {
-/** Range-image cell (imageCell(), or -1 if none) and range of points [0, n) of x/y/z. */
+/** Range-image cell (imageCell(), or -1 if none), range and tan(elevation) of points [0, n)
+ *  of x/y/z. */
 void imageCellsScalar(const RangeImageLayout& l, const float* x, const float* y, const float* z,
-                      std::size_t n, int32_t* cells, float* ranges)
+                      std::size_t n, int32_t* cells, float* ranges, float* tans)
 {
     for (std::size_t j = 0; j < n; ++j)
     {
@@ -28,6 +29,7 @@ void imageCellsScalar(const RangeImageLayout& l, const float* x, const float* y,
         if (rxy == 0.0) continue;
         cells[j] = imageCell(l, pseudoAzimuth(sx, sy), sz / rxy);
         ranges[j] = static_cast<float>(std::sqrt(rxy * rxy + sz * sz));
+        tans[j] = static_cast<float>(sz / rxy);
     }
 }
 
@@ -35,7 +37,7 @@ void imageCellsScalar(const RangeImageLayout& l, const float* x, const float* y,
 /** imageCellsScalar() four points at a time: the same operations, so the same bits. */
 __attribute__((target("avx"))) void imageCellsAvx(const RangeImageLayout& l, const float* x,
                                                   const float* y, const float* z, std::size_t n,
-                                                  int32_t* cells, float* ranges)
+                                                  int32_t* cells, float* ranges, float* tans)
 {
     const __m256d inf = _mm256_set1_pd(std::numeric_limits<double>::infinity());
     const __m256d zero = _mm256_setzero_pd();
@@ -82,63 +84,70 @@ __attribute__((target("avx"))) void imageCellsAvx(const RangeImageLayout& l, con
         const __m256d range =
             _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(rxy, rxy), _mm256_mul_pd(sz, sz)));
         _mm_storeu_ps(ranges + j, _mm256_cvtpd_ps(range));
+        _mm_storeu_ps(tans + j, _mm256_cvtpd_ps(tan_el));
     }
-    imageCellsScalar(l, x + j, y + j, z + j, n - j, cells + j, ranges + j);
+    imageCellsScalar(l, x + j, y + j, z + j, n - j, cells + j, ranges + j, tans + j);
 }
 #endif
 
 /** imageCellsScalar(), with AVX when the CPU has it. */
 void imageCells(const RangeImageLayout& l, const float* x, const float* y, const float* z,
-                std::size_t n, int32_t* cells, float* ranges)
+                std::size_t n, int32_t* cells, float* ranges, float* tans)
 {
 #if HIF_X86_AVX
     if (useAvx())
     {
-        imageCellsAvx(l, x, y, z, n, cells, ranges);
+        imageCellsAvx(l, x, y, z, n, cells, ranges, tans);
         return;
     }
 #endif
-    imageCellsScalar(l, x, y, z, n, cells, ranges);
+    imageCellsScalar(l, x, y, z, n, cells, ranges, tans);
 }
 }  // namespace
 
 namespace
 {
-/** The nearest return of `pts` in every cell of `img` (layout `l`), each range
- *  turned into a cell value by `value` (monotone); `none` where no return. */
-template <typename T, typename Value>
+/** The nearest return of `pts` in every cell of `img` (layout `l`): `keep(cell, range,
+ *  tan_el)` keeps the nearer of the cell's value and the return; `none` where no return. */
+template <typename T, typename Keep>
 void fillImage(const RangeImageLayout& l, const PointsView& pts, std::vector<T>& img, T none,
-               Value value)
+               Keep keep)
 {
     img.assign(l.cells(), none);
     constexpr std::size_t kBlock = 256;
     alignas(64) int32_t cells[kBlock];
     alignas(64) float ranges[kBlock];
+    alignas(64) float tans[kBlock];
     for (std::size_t b0 = 0; b0 < pts.size; b0 += kBlock)
     {
         const std::size_t nb = std::min(kBlock, pts.size - b0);
-        imageCells(l, pts.x + b0, pts.y + b0, pts.z + b0, nb, cells, ranges);
+        imageCells(l, pts.x + b0, pts.y + b0, pts.z + b0, nb, cells, ranges, tans);
         for (std::size_t j = 0; j < nb; ++j)
-            if (cells[j] >= 0)
-            {
-                T& cell = img[static_cast<std::size_t>(cells[j])];
-                cell = std::min(cell, value(ranges[j]));
-            }
+            if (cells[j] >= 0) keep(img[static_cast<std::size_t>(cells[j])], ranges[j], tans[j]);
     }
 }
 }  // namespace
 
-void buildRangeImage(const RangeImageLayout& l, const PointsView& pts, std::vector<float>& img)
+void buildReturnImage(const RangeImageLayout& l, const PointsView& pts,
+                      std::vector<BeamReturn>& img)
 {
-    fillImage(l, pts, img, std::numeric_limits<float>::infinity(), [](float r) { return r; });
+    fillImage(l, pts, img, BeamReturn{},
+              [](BeamReturn& cell, float r, float tan_el)
+              {
+                  if (r < cell.range) cell = {r, tan_el};
+              });
 }
 
 void buildRangeImageCm(const RangeImageLayout& l, const PointsView& pts, std::vector<uint16_t>& img)
 {
     // Ranges from 655.34 m on read as "no return" (no LiDAR of interest reaches them).
     fillImage(l, pts, img, kNoReturnCm,
-              [](float r)
-              { return r < 655.34f ? static_cast<uint16_t>(r * 100.0f + 0.5f) : kNoReturnCm; });
+              [](uint16_t& cell, float r, float /*tan_el*/)
+              {
+                  const uint16_t v =
+                      r < 655.34f ? static_cast<uint16_t>(r * 100.0f + 0.5f) : kNoReturnCm;
+                  cell = std::min(cell, v);
+              });
 }
 
 }  // namespace hif::detail

@@ -9,12 +9,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "HeightCells.h"
 #include "hif/PillarGrid.h"
 #include "hif/SensorModel.h"
+#include "hif/detail/PillarUpdate.h"
 
 namespace hif::detail
 {
@@ -38,75 +41,324 @@ inline int imageCell(const RangeImageLayout& l, double paz, double tan_el)
     return r * l.cols + c;
 }
 
+/** The range-adaptive interval widths (Params::beam_spacing_deg) of a pillar at horizontal
+ *  distance `d` from the sensor, for heights seen at elevation tangent `tan_el`, in height
+ *  cells: heights whose gap is at most `gap` share an interval, which is widened by `pad`. */
+struct IntervalWidths
+{
+    int32_t gap = 0;
+    int32_t pad = 0;
+
+    static IntervalWidths of(const PillarGrid& grid, double d, double tan_el)
+    {
+        const Params& prm = grid.params();
+        const double inv_res = 1.0 / grid.geometry().height_resolution;
+        const double beam_gap = d * grid.beamGapSlope(tan_el);  // between the beams around it
+        return {floorCells(std::max(prm.merge_gap, beam_gap) * inv_res + 1e-9),
+                ceilCells(std::max(prm.interval_padding, 0.5 * beam_gap) * inv_res - 1e-9)};
+    }
+
+    /** The part of interval [lo, hi) within the padding: what was seen of it (its middle cell
+     *  when the interval is no wider than twice its padding). */
+    [[nodiscard]] Span core(int32_t lo, int32_t hi) const
+    {
+        const int64_t a = int64_t{lo} + pad, b = int64_t{hi} - pad;
+        if (a < b) return {static_cast<int32_t>(a), static_cast<int32_t>(b)};
+        const int64_t twice = int64_t{lo} + hi - 1;  // halved rounding down, at any sign
+        const auto mid = static_cast<int32_t>(twice >= 0 ? twice / 2 : -((1 - twice) / 2));
+        return {mid, mid + 1};
+    }
+};
+
+/** One cell of a scan's range image for insertion: the nearest return in it, with the
+ *  tangent of its elevation (sensor frame), which places its beam more finely than the cell's
+ *  row does. */
+struct BeamReturn
+{
+    float range = std::numeric_limits<float>::infinity();  ///< metres; +inf: no return
+    float tan_el = 0.0f;
+};
+
 /** The see-through test of one pillar against a scan's range image (nearest return per cell,
- *  metres): did a beam of the scan pass through heights [lo, hi) (height cells) of the pillar
- *  whose axis is base + up * z in the sensor frame? Yes when, in the direction of the pillar's
- *  centre (and half_cols columns on each side) between those heights, some return lies farther
- *  than the pillar by more than `margin` and none lies within `margin` of it (something
- *  there); a return nearer than that is occlusion and no cell with a return is no evidence. */
+ *  with its elevation): where did beams of the scan pass through heights [lo, hi) (height
+ *  cells) of the pillar whose axis is base + up * z in the sensor frame? In the direction of
+ *  the pillar's centre (and half_cols columns on each side), a return that lies farther than
+ *  the pillar by more than `margin` passed through it, at the heights its beam crosses within
+ *  the pillar (from `reach` before the pillar's axis to `reach` after); a return within
+ *  `margin` of the pillar between those heights vetoes (something is there); a return nearer
+ *  than that is occlusion, and a cell without a return is no evidence. */
 struct BeamGate
 {
     const RangeImageLayout* layout = nullptr;
-    const float* image = nullptr;
+    const BeamReturn* image = nullptr;
     Eigen::Vector3d base = Eigen::Vector3d::Zero();
     Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
     double margin = 0.0;
-    double res = 0.0;   ///< height cell, metres
-    int half_cols = 0;  ///< columns looked along on each side of the centre's
+    double res = 0.0;  ///< height cell, metres
+    static constexpr int kMaxHalfCols = 1;
+    int half_cols = 0;  ///< columns looked along on each side of the centre's (<= kMaxHalfCols)
+    /** Half the pillar's extent along the beam through its centre, metres. */
+    double reach = 0.0;
+    /** passedCells(): two beams that passed, with no other return between them and elevation
+     *  tangents at most this apart (neighbouring beams of the sensor), show the heights
+     *  between them empty too; 0: each beam only its own. */
+    double bridge_tan = 0.0;
+    /** For intervalCore(): the grid (its interval widths). */
+    const PillarGrid* grid = nullptr;
+    /** The sensor's height in the world frame, metres (-up.base, given exactly). */
+    double sensor_z = 0.0;
 
-    [[nodiscard]] bool passedThrough(int32_t lo, int32_t hi) const { return test(lo, hi, true); }
+    /** The core (IntervalWidths::core()) of interval [lo, hi) of this pillar, with the
+     *  widths of its middle height at the pillar's distance. */
+    [[nodiscard]] Span intervalCore(int32_t lo, int32_t hi) const
+    {
+        // Horizontal distance to the axis: base without its component along the vertical.
+        const double d = (base - up * up.dot(base)).norm();
+        if (d == 0.0 || !grid) return {0, 0};
+        const double mid = 0.5 * (static_cast<double>(lo) + hi) * res - sensor_z;  // above it
+        return IntervalWidths::of(*grid, d, mid / d).core(lo, hi);
+    }
+
+    /** What a beam must cross to show all of the piece [lo, hi) of interval `k` of `iv`
+     *  (the pillar's intervals, ascending) empty, for passedCells(). The pillar's lowest
+     *  interval is its floor (the ground, mostly): beams reach it at grazing angles from above
+     *  and pass through the padding around what was seen of it, so only a beam through what
+     *  was seen (intervalCore()) shows all of it gone, and any other only the heights it
+     *  crossed. An interval above the floor is an object: a beam through any part of it shows
+     *  it gone. */
+    [[nodiscard]] Span floorOrObject(const Interval* iv, std::size_t k, int32_t lo,
+                                     int32_t hi) const
+    {
+        if (k > 0) return {lo, hi};
+        const Span c = intervalCore(iv[0].lo, iv[0].hi);
+        return {std::max(c.lo, lo), std::min(c.hi, hi)};
+    }
+
     /** Whether any beam between those heights returned beyond the pillar (returns near it do
      *  not veto): some of the pillar's free space was seen empty. */
     [[nodiscard]] bool anyPassedThrough(int32_t lo, int32_t hi) const
     {
-        return test(lo, hi, false);
+        Axis a;
+        if (!axisOf(lo, hi, a)) return false;
+        // From the top row down: beams above what stands in the pillar pass first. Distances
+        // compared squared: no square root per row.
+        for (int row = a.row1; row >= a.row0; --row)
+        {
+            const double dist2 = a.dist2(*layout, row);
+            const BeamReturn* line = rowOf(row);
+            for (int k = 0; k < a.ncols; ++k)
+            {
+                const double r = line[a.cols[k]].range;
+                if (!std::isfinite(r)) continue;  // no return: no evidence
+                if (r > margin && (r - margin) * (r - margin) > dist2) return true;
+            }
+        }
+        return false;
     }
 
-private:
-    [[nodiscard]] bool test(int32_t lo, int32_t hi, bool veto) const
+    /** The height cells of [lo, hi) that beams passed through, as sorted disjoint spans in
+     *  `out` (cleared first): the cells each such beam crosses within the pillar, and those
+     *  between two neighbouring beams that both passed (bridge_tan); all of [lo, hi) when a
+     *  beam passed through `core` (floorOrObject()). Empty when none passed, or when a return
+     *  between those heights lies near the pillar (something is there: a veto). */
+    void passedCells(int32_t lo, int32_t hi, Span core, std::vector<Span>& out) const
     {
+        out.clear();
+        Axis a;
+        if (!axisOf(lo, hi, a)) return;
         const RangeImageLayout& l = *layout;
-        const Eigen::Vector3d p = base + up * (lo * res);
-        const double hi_z = base.z() + up.z() * (hi * res);
-        const double d = std::sqrt(p.x() * p.x() + p.y() * p.y());
-        if (d == 0.0) return false;
-        const double paz = pseudoAzimuth(p.x(), p.y());
-        const int k0 = imageCell(l, paz, std::max(p.z() / d, l.tan_min));
-        const int k1 = imageCell(l, paz, std::min(hi_z / d, l.tan_max - 1e-12));
-        if (k0 < 0 || k1 < 0) return false;
-        const int c0 = k0 % l.cols;
-        const double d2 = d * d;
-        bool through = false;
-        // From the top row down: beams above what stands in the pillar pass first (an early
-        // end for anyPassedThrough()). Distances compared squared: no square root per row.
-        for (int row = k1 / l.cols; row >= k0 / l.cols; --row)
+        // The rows of [lo, hi) first: a veto, or a beam through the core, settles it.
+        bool passed = false, blocked = false;
+        for (int row = a.row1; row >= a.row0; --row)
         {
-            const double tan_el = l.tan_min + (row + 0.5) * l.tan_res;
-            const double dist2 = d2 * (1.0 + tan_el * tan_el);  // to the pillar's axis, squared
-            for (int dc = -half_cols; dc <= half_cols; ++dc)
+            const double dist2 = a.dist2(l, row);
+            const BeamReturn* line = rowOf(row);
+            for (int k = 0; k < a.ncols; ++k)
             {
-                const int c = (c0 + dc + l.cols) % l.cols;
-                const double r = image[static_cast<std::size_t>(row) * l.cols + c];
+                const BeamReturn& ret = line[a.cols[k]];
+                const double r = ret.range;
                 if (!std::isfinite(r)) continue;  // no return: no evidence
                 const double beyond = r - margin, near = r + margin;
                 if (beyond > 0.0 && beyond * beyond > dist2)
                 {
-                    if (!veto) return true;
-                    through = true;
+                    passed = true;
+                    if (core.lo < core.hi)
+                    {
+                        const Span c = crossedCells(ret.tan_el, a);
+                        if (c.lo < core.hi && core.lo < c.hi)
+                        {
+                            out.assign(1, Span{lo, hi});
+                            // Still vetoed by a return near the pillar in the rows below.
+                            for (int rr = row; rr >= a.row0; --rr)
+                                if (anyNear(rr, a)) return out.clear();
+                            return;
+                        }
+                    }
                 }
-                else if (veto && near * near > dist2)
-                    return false;  // something is there
-                // else: occluded by something closer, no evidence
+                else if (near * near > dist2)
+                    return;  // something is there
+                else
+                    blocked = true;  // occluded by something closer
             }
         }
-        return through;
+        // No beam passed here, and one in front of the pillar splits what is above from what
+        // is below: nothing to bridge across either.
+        if (!passed && (blocked || bridge_tan == 0.0)) return;
+        // The heights each beam crossed, and between neighbours, from one beam spacing above
+        // [lo, hi) to one below (a beam outside can bridge to one inside).
+        const int extra = static_cast<int>(std::ceil(bridge_tan / l.tan_res));
+        const int top = std::min(l.rows - 1, a.row1 + extra);
+        const int bottom = std::max(0, a.row0 - extra);
+        bool have_prev = false, broken = false;
+        double prev_tan = 0.0;
+        Span prev{0, 0};
+        for (int row = top; row >= bottom; --row)
+        {
+            const double dist2 = a.dist2(l, row);
+            const BeamReturn* line = rowOf(row);
+            for (int k = 0; k < a.ncols; ++k)
+            {
+                const BeamReturn& ret = line[a.cols[k]];
+                const double r = ret.range;
+                if (!std::isfinite(r)) continue;
+                const double beyond = r - margin;
+                if (beyond > 0.0 && beyond * beyond > dist2)
+                {
+                    const Span c = crossedCells(ret.tan_el, a);
+                    if (have_prev && !broken && std::abs(prev_tan - ret.tan_el) <= bridge_tan)
+                        out.push_back({std::min(c.lo, prev.lo), std::max(c.hi, prev.hi)});
+                    else
+                        out.push_back(c);
+                    have_prev = true;
+                    broken = false;
+                    prev = c;
+                    prev_tan = ret.tan_el;
+                }
+                else
+                    broken = true;  // a return near or in front: unknown behind it
+            }
+        }
+        // Clipped to [lo, hi), sorted and joined.
+        std::size_t w = 0;
+        for (const Span& c : out)
+        {
+            const Span x{std::max(c.lo, lo), std::min(c.hi, hi)};
+            if (x.lo < x.hi) out[w++] = x;
+        }
+        out.resize(w);
+        std::sort(out.begin(), out.end(), [](const Span& x, const Span& y) { return x.lo < y.lo; });
+        w = 0;
+        for (std::size_t k = 1; k < out.size(); ++k)
+        {
+            if (out[k].lo <= out[w].hi)
+                out[w].hi = std::max(out[w].hi, out[k].hi);
+            else
+                out[++w] = out[k];
+        }
+        if (!out.empty()) out.resize(w + 1);
+    }
+
+private:
+    /** Where the pillar's axis lies in the image between two heights. */
+    struct Axis
+    {
+        double d = 0.0;             ///< horizontal distance, metres
+        double hx = 0.0, hy = 0.0;  ///< its direction
+        int row0 = 0, row1 = 0;     ///< rows of the lowest and highest height
+        /** The columns looked along: the centre's, and half_cols on each side (wrapped). */
+        int cols[2 * kMaxHalfCols + 1] = {};
+        int ncols = 0;
+
+        /** Squared distance to the axis along the middle of `row`. */
+        [[nodiscard]] double dist2(const RangeImageLayout& l, int row) const
+        {
+            const double tan_el = l.tan_min + (row + 0.5) * l.tan_res;
+            return d * d * (1.0 + tan_el * tan_el);
+        }
+    };
+
+    [[nodiscard]] bool axisOf(int32_t lo, int32_t hi, Axis& a) const
+    {
+        const RangeImageLayout& l = *layout;
+        const Eigen::Vector3d p = base + up * (lo * res);
+        const double hi_z = base.z() + up.z() * (hi * res);
+        a.d = std::sqrt(p.x() * p.x() + p.y() * p.y());
+        if (a.d == 0.0) return false;
+        a.hx = p.x() / a.d;
+        a.hy = p.y() / a.d;
+        const double paz = pseudoAzimuth(p.x(), p.y());
+        const int k0 = imageCell(l, paz, std::max(p.z() / a.d, l.tan_min));
+        const int k1 = imageCell(l, paz, std::min(hi_z / a.d, l.tan_max - 1e-12));
+        if (k0 < 0 || k1 < 0) return false;
+        const int col = k0 % l.cols;
+        a.row0 = k0 / l.cols;
+        a.row1 = k1 / l.cols;
+        a.ncols = 0;
+        for (int dc = -half_cols; dc <= half_cols; ++dc)
+            a.cols[a.ncols++] = (col + dc + l.cols) % l.cols;
+        return true;
+    }
+
+    [[nodiscard]] const BeamReturn* rowOf(int row) const
+    {
+        return image + static_cast<std::size_t>(row) * layout->cols;
+    }
+
+    /** Whether a return of `row` lies within the margin of the pillar. */
+    [[nodiscard]] bool anyNear(int row, const Axis& a) const
+    {
+        const double dist2 = a.dist2(*layout, row);
+        const BeamReturn* line = rowOf(row);
+        for (int k = 0; k < a.ncols; ++k)
+        {
+            const double r = line[a.cols[k]].range;
+            if (!std::isfinite(r)) continue;
+            const double beyond = r - margin, near = r + margin;
+            if (!(beyond > 0.0 && beyond * beyond > dist2) && near * near > dist2) return true;
+        }
+        return false;
+    }
+
+    /** The cells a beam of elevation tangent `tan_el` crosses within the pillar, [lo, hi)
+     *  (not clipped to any interval). */
+    [[nodiscard]] Span crossedCells(double tan_el, const Axis& a) const
+    {
+        // World height (metres) along the beam at horizontal distance s: sensor_z + s * slope.
+        const double slope = up.x() * a.hx + up.y() * a.hy + up.z() * tan_el;
+        const double inv_res = 1.0 / res;
+        const double za = (sensor_z + (a.d - reach) * slope) * inv_res;
+        const double zb = (sensor_z + (a.d + reach) * slope) * inv_res;
+        constexpr double kMin = std::numeric_limits<int32_t>::min();
+        constexpr double kMax = std::numeric_limits<int32_t>::max();
+        const double c0 = std::clamp(std::floor(std::min(za, zb)), kMin, kMax - 1.0);
+        const double c1 = std::clamp(std::floor(std::max(za, zb)) + 1.0, c0 + 1.0, kMax);
+        return {static_cast<int32_t>(c0), static_cast<int32_t>(c1)};
     }
 };
 
+/** BeamGate::bridge_tan for the grid's sensor: neighbouring beams are at most 1.5 vertical
+ *  spacings apart (the sensor model's, else Params::beam_spacing_deg; 0 when that is 0). */
+inline double neighbourBeamsTan(const PillarGrid& grid)
+{
+    const auto& model = grid.sensorModel();
+    const double deg = model ? model->vertical_spacing_deg : grid.params().beam_spacing_deg;
+    return std::tan(1.5 * deg * M_PI / 180.0);
+}
+
+/** Half the extent, along the ray from the sensor through its centre, of a pillar of side
+ *  `size` whose centre lies (dx, dy) from the sensor (world frame): size / 2 over the larger of
+ *  |cos|, |sin| of the ray's azimuth. */
+inline double pillarReach(double size, double dx, double dy)
+{
+    const double m = std::max(std::abs(dx), std::abs(dy));
+    return m > 0.0 ? 0.5 * size * std::sqrt(dx * dx + dy * dy) / m : 0.5 * size;
+}
+
 /** Fills `img` (layout `l`, row-major) with the nearest return of `points`
- *  (sensor frame) in every cell; +infinity where no return falls. Four points at a time with
- *  AVX when useAvx() (the same bits as one at a time). */
-void buildRangeImage(const RangeImageLayout& l, const PointsView& points, std::vector<float>& img);
+ *  (sensor frame) in every cell; BeamReturn{} (range +infinity) where no return falls. Four
+ *  points at a time with AVX when useAvx() (the same bits as one at a time). */
+void buildReturnImage(const RangeImageLayout& l, const PointsView& points,
+                      std::vector<BeamReturn>& img);
 
 /** "No return" in a range image in centimetres. */
 constexpr uint16_t kNoReturnCm = 0xFFFF;

@@ -13,18 +13,32 @@ namespace hif::detail
 {
 namespace
 {
-/** The see-through misses of one pillar the scan did not hit. */
-void seeThroughPillar(Pillar& pil, const BeamGate& gate, const LogOddsModel& model)
+/** The see-through misses of one pillar the scan did not hit: Eq. 13 where beams passed
+ *  through its intervals (BeamGate::floorOrObject()). `passed` and `pieces` are scratch. */
+void seeThroughPillar(Pillar& pil, const BeamGate& gate, const LogOddsModel& model, std::size_t cap,
+                      std::vector<Span>& passed, std::vector<Interval>& pieces)
 {
+    pieces.clear();
     bool changed = false;
-    for (Interval& iv : pil.intervals)
-        if (gate.passedThrough(iv.lo, iv.hi))
+    for (const Interval& iv : pil.intervals)
+    {
+        const auto k = static_cast<std::size_t>(&iv - pil.intervals.data());
+        gate.passedCells(iv.lo, iv.hi, gate.floorOrObject(pil.intervals.data(), k, iv.lo, iv.hi),
+                         passed);
+        int32_t at = iv.lo;
+        for (const Span& s : passed)
         {
-            iv.logodds = model.clamp(iv.logodds + model.miss);  // Eq. 13
+            if (s.lo > at) pieces.push_back({at, s.lo, iv.logodds});
+            pieces.push_back({s.lo, s.hi, model.clamp(iv.logodds + model.miss)});  // Eq. 13
+            at = s.hi;
             changed = true;
         }
-    if (changed)
-        pil.intervals.resize(joinEqualNeighbours(pil.intervals.data(), pil.intervals.size()));
+        if (at < iv.hi) pieces.push_back({at, iv.hi, iv.logodds});
+    }
+    if (!changed) return;
+    std::size_t n = joinEqualNeighbours(pieces.data(), pieces.size());
+    if (n > cap) n = capIntervals(pieces.data(), n, cap);
+    pil.intervals.assign(pieces.begin(), pieces.begin() + static_cast<std::ptrdiff_t>(n));
 }
 }  // namespace
 
@@ -32,7 +46,7 @@ bool needsScanImage(const Params& p) { return p.miss_needs_beam || p.see_through
 
 void buildScanImage(PillarGrid& grid, const PointsView& pts)
 {
-    buildRangeImage(grid.imageLayout(), pts, GridAccess::workspace(grid).range_image);
+    buildReturnImage(grid.imageLayout(), pts, GridAccess::workspace(grid).range_image);
 }
 
 void seeThroughMisses(PillarGrid& grid, const Eigen::Isometry3d& T, const ScanBuckets& scan)
@@ -65,9 +79,13 @@ void seeThroughMisses(PillarGrid& grid, const Eigen::Isometry3d& T, const ScanBu
     }
     // Rows of the window are independent (each pillar is in one row): split them over threads.
     const Eigen::Vector3d up = Rt.col(2);  // world z axis in the sensor frame
+    const std::size_t cap = prm.max_intervals_per_pillar;
+    const double bridge = neighbourBeamsTan(grid);
     forRanges(GridAccess::arena(grid), static_cast<std::size_t>(side), 8,
               [&](std::size_t a0, std::size_t a1)
               {
+                  std::vector<Span> passed;
+                  std::vector<Interval> pieces;
                   for (auto a = static_cast<int64_t>(a0); a < static_cast<int64_t>(a1); ++a)
                       for (int64_t b = 0; b < side; ++b)
                       {
@@ -87,8 +105,13 @@ void seeThroughMisses(PillarGrid& grid, const Eigen::Isometry3d& T, const ScanBu
                                         Rt * Eigen::Vector3d(dx, dy, -t.z()),
                                         up,
                                         margin,
-                                        geo.height_resolution};
-                          seeThroughPillar(it->second, gate, model);
+                                        geo.height_resolution,
+                                        0,
+                                        pillarReach(ps, dx, dy),
+                                        bridge,
+                                        &grid,
+                                        t.z()};
+                          seeThroughPillar(it->second, gate, model, cap, passed, pieces);
                       }
               });
 }

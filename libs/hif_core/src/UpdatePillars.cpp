@@ -30,6 +30,7 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
     // The centre's column and one on each side: columns are half a horizontal step
     // (RangeImageLayout::forSensor), so these hold the beam nearest the pillar's centre.
     constexpr int kHalfCols = 1;
+    const double bridge = neighbourBeamsTan(grid);
     auto gateOf = [&](std::size_t p)
     {
         const PillarIndex idx = unpackKey(scan.keys[p]);
@@ -41,7 +42,11 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
                         up,
                         margin,
                         geo.height_resolution,
-                        kHalfCols};
+                        kHalfCols,
+                        pillarReach(geo.pillar_size, axis.x(), axis.y()),
+                        bridge,
+                        &grid,
+                        scan.sensor.z()};
     };
 
     InsertStats st;

@@ -100,6 +100,7 @@ private:
     LogOddsModel model_;
     std::size_t max_intervals_;
     std::vector<Interval> pieces_;  ///< the sweep's output, reused
+    std::vector<Span> passed_;      ///< cells beams passed through (BeamGate), reused
 };
 
 /** Merges neighbours of iv[0, n) until at most `max_intervals` remain: each step joins the
