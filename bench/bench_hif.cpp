@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "hif/CHeightIntervalMap.h"
+#include "hif/FreeSpaceTest.h"
 #include "hif/PillarGrid.h"
-#include "hif/ScanWindow.h"
 #include "hif/detail/InsertSteps.h"
 #include "hif/io/KittiSequence.h"
 
@@ -288,38 +288,38 @@ void BM_Classify(benchmark::State& state)
 BENCHMARK(BM_Classify)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 /** Classification with the offline configuration (kitti.ini), as hif-clean does it: against
- *  the map of all scans and, for the free-space test, a window of the free_space_window scans
- *  on each side (built once here; hif-clean builds each scan's image once, as it reads it:
- *  that is BM_WindowImage). */
+ *  the map of all scans and, for the free-space test, the free_space_window scans on each
+ *  side (the test holds every scan here, built once; hif-clean gives it each scan's image as
+ *  it reads it: that is BM_WindowImage). */
 void BM_ClassifyOfflineConfig(benchmark::State& state)
 {
     if (!haveScans(state)) return;
     const auto [geometry, params] = offlineConfig();
     hif::PillarGrid g(geometry, params);
-    hif::ScanWindow window;
+    hif::FreeSpaceTest test(scans().size());
     for (std::size_t i = 0; i < scans().size(); ++i)
     {
         g.insertScan(scans().view(i), scans().poses[i]);
-        window.add(i, scans().view(i), scans().poses[i], g.imageLayout());
+        test.add(scans().view(i), scans().poses[i], g.imageLayout());
     }
     std::vector<uint8_t> dyn;
     std::size_t k = 0, seen_through = 0;
     for (auto _ : state)
     {
         seen_through +=
-            g.classify(scans().view(k), dyn, scans().poses[k], window, k).seen_through_points;
+            g.classify(scans().view(k), dyn, scans().poses[k], &test).seen_through_points;
         k = (k + 1) % scans().size();
     }
     state.counters["seen_through/scan"] = double(seen_through) / double(state.iterations());
 }
 BENCHMARK(BM_ClassifyOfflineConfig)->Unit(benchmark::kMillisecond);
 
-/** One scan added to a ScanWindow (its range image built and stored), the window kept at 21
- *  scans. */
+/** One scan added to a FreeSpaceTest (its fingerprint and range image built and stored),
+ *  the test holding 21 scans (offline, 10 on each side). */
 void BM_WindowImage(benchmark::State& state)
 {
     if (!haveScans(state)) return;
-    hif::ScanWindow window;
+    hif::FreeSpaceTest test(21);
     // Laid out as a map lays out the images of its sensor (estimated from the first scan).
     const auto layout =
         hif::RangeImageLayout::forSensor(hif::SensorModel::estimate(scans().view(0)));
@@ -327,8 +327,7 @@ void BM_WindowImage(benchmark::State& state)
     for (auto _ : state)
     {
         const std::size_t k = id % scans().size();
-        window.add(id, scans().view(k), scans().poses[k], layout);
-        window.dropBefore(id >= 20 ? id - 20 : 0);
+        test.add(scans().view(k), scans().poses[k], layout);
         ++id;
     }
 }

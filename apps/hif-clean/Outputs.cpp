@@ -47,7 +47,7 @@ Outputs::Outputs(const std::string& dir, std::optional<std::size_t> first_frame,
 }
 
 void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::apps::Scan& scan,
-                               std::size_t k, const hif::ScanWindow* window)
+                               std::size_t k)
 {
     auto& [x, y, z] = xyz_;
     std::vector<float>& intensity = intensity_;
@@ -56,8 +56,7 @@ void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::ap
     // points above are what the clouds get).
     const auto t0 = Clock::now();
     std::vector<uint8_t> dyn;
-    const auto st = window ? map.classify(*scan.obs, scan.robot_pose, dyn, *window, k)
-                           : map.classify(*scan.obs, scan.robot_pose, dyn);
+    const auto st = map.classify(*scan.obs, scan.robot_pose, dyn);
     classify_ms.push_back(msSince(t0));
     if (dyn.size() != x.size())
         throw std::logic_error("classify() and observationToWorldPoints() disagree on the size");

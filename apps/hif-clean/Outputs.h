@@ -50,7 +50,7 @@ public:
      *  `window` (offline), the free-space test uses it, the scan being its scan `k`; without,
      *  the map's own window (online). */
     void classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::apps::Scan& scan,
-                          std::size_t k, const hif::ScanWindow* window = nullptr);
+                          std::size_t k);
     /** Before the first scan is classified: about how many points the kept cloud will get (a
      *  guess: right to the number of digits, it saves a copy of that file). */
     void expectKept(std::size_t points) { kept_cloud_.expectCount(points); }

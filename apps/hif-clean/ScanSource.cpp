@@ -133,7 +133,7 @@ bool FrameScans::next(Scan& out)
         if (!obs) continue;
         if (isScan(*obs))
         {
-            out = {obs, pose_, std::nullopt, std::nullopt, has_pose_};
+            out = {obs, pose_, std::nullopt, has_pose_};
             return true;
         }
         if (IS_CLASS(*obs, mrpt::obs::CObservationRobotPose))

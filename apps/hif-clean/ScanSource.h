@@ -20,7 +20,6 @@
 #include <string>
 #include <vector>
 
-#include "hif/ScanWindow.h"
 #include "hif/apps/RunFiles.h"
 #include "hif/io/Cloud.h"
 
@@ -33,8 +32,6 @@ struct Scan
     mrpt::obs::CObservation::Ptr obs;
     mrpt::poses::CPose3D robot_pose;
     std::optional<std::size_t> frame;
-    /** Its entry of the free-space window, when built as it was read (offline, pass 2). */
-    std::optional<hif::ScanWindow::Scan> window_scan;
     /** False for a scan of a rawlog opened with poses optional that had none before it
      *  (robot_pose is then the identity). */
     bool has_pose = true;

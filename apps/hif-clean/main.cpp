@@ -155,10 +155,6 @@ struct Run
 {
     std::string input, out_dir, cfg_file, section;
     bool online = false, hold_scans = false, show_progress = true;
-    /** Offline pass 2 with the free-space test: the reader thread builds each scan's window
-     *  entry as it reads it, numbering them from 0. Set only while the reader is idle. */
-    bool prepare_window = false;
-    std::size_t window_ids = 0;
     std::unique_ptr<hif::apps::ScanSource> source;
     std::string dm_output;  ///< <folder>/hif_output.pcd for a DynamicMap folder, else empty
     /** The outputs, written aside and put in place when complete. */
@@ -189,14 +185,7 @@ void setUp(Cli& cli, Run& run)
         throw std::runtime_error("--hold-scans applies to offline mode only (not --online)");
     if (cli.threads.isSet()) hif::apps::flagInRange(cli.threads.getValue(), "--threads", 1, 1024);
 
-    run.source = hif::apps::openScanSource(run.input,
-                                           [&run](hif::apps::Scan& s)
-                                           {
-                                               if (!run.prepare_window) return;
-                                               s.obs->load();
-                                               s.window_scan = run.hif_map->makeWindowScan(
-                                                   run.window_ids++, *s.obs, s.robot_pose);
-                                           });
+    run.source = hif::apps::openScanSource(run.input);
     run.cfg_file = cli.config.isSet() ? cli.config.getValue()
                                       : defaultConfig(run.online, run.source->isDynamicMapFolder());
     hif::apps::checkConfigFile(run.cfg_file);
@@ -234,8 +223,16 @@ void setUp(Cli& cli, Run& run)
         throw std::runtime_error(
             "config '" + run.cfg_file + "', section [" + run.section +
             "] defines no CHeightIntervalMap (set CHeightIntervalMap_count=1)");
-    // Offline, pass 2 keeps its own window of the scans around each one.
-    run.hif_map->insertionOptions.online_window = run.online;
+    // Online or offline is the map's: the run follows it.
+    if (run.hif_map->params().online != run.online)
+        throw std::runtime_error(
+            "config '" + run.cfg_file + "' makes an " +
+            (run.online ? "offline map (online=false), but --online classifies each scan as it "
+                          "comes: use an online config (share/hif/config/kitti-online.ini, the "
+                          "default with --online)"
+                        : "online map (online=true), but without --online every scan is "
+                          "inserted before any is classified: add --online, or use an offline "
+                          "config (share/hif/config/kitti.ini, the default)"));
     if (cli.threads.isSet())
     {
         run.hif_map->insertionOptions.threads = static_cast<uint64_t>(cli.threads.getValue());
@@ -356,21 +353,16 @@ std::vector<hif::apps::Scan> insertAll(Run& run, Outputs& out, Timings& t)
 }
 
 /** Pass 2 (offline): every point of every scan classified against the final map, and, with
- *  the free-space test on, against the free_space_window scans on each side of it (read ahead
- *  and kept in a window of range images). */
+ *  the free-space test on, by the free_space_window scans on each side of it: the scans are
+ *  read again and given to the map's test in their order, and scan k is classified once scan k
+ *  + free_space_window is in (read ahead and held until then). */
 void classifyAll(Run& run, std::vector<hif::apps::Scan>& held, Outputs& out, std::size_t scans)
 {
     hif::apps::Progress progress(kTag, "classifying", scans, run.show_progress);
     const std::size_t w = run.hif_map->params().free_space_window;
-    hif::ScanWindow window;
     std::deque<hif::apps::Scan> ahead;  // read, not yet classified
     std::size_t next = 0;               // the next scan to read
-    if (!run.hold_scans)
-    {
-        run.prepare_window = w > 0;  // the reader is idle: pass 1 read to the end
-        run.window_ids = 0;
-        run.source->rewind();
-    }
+    if (!run.hold_scans) run.source->rewind();
     for (std::size_t k = 0; k < scans; ++k)
     {
         while (next < scans && next <= k + w)
@@ -382,22 +374,14 @@ void classifyAll(Run& run, std::vector<hif::apps::Scan>& held, Outputs& out, std
                 throw std::runtime_error("input '" + run.input + "' held " + std::to_string(scans) +
                                          " scans when first read, " + std::to_string(next) +
                                          " now");
-            if (s.window_scan)
-            {
-                if (s.window_scan->id != next)
-                    throw std::logic_error("window entry " + std::to_string(s.window_scan->id) +
-                                           " for scan " + std::to_string(next));
-                window.add(std::move(*s.window_scan));
-            }
-            else if (w > 0)
-                run.hif_map->addToWindow(window, next, *s.obs, s.robot_pose);
+            s.obs->load();
+            if (w > 0) run.hif_map->addToFreeSpaceTest(*s.obs, s.robot_pose);
             ahead.push_back(std::move(s));
             ++next;
         }
-        out.classifyAndWrite(*run.hif_map, ahead.front(), k, w > 0 ? &window : nullptr);
+        out.classifyAndWrite(*run.hif_map, ahead.front(), k);
         if (!run.hold_scans) ahead.front().obs->unload();
         ahead.pop_front();
-        window.dropBefore(k + 1 >= w ? k + 1 - w : 0);
         progress.update(k + 1);
     }
     progress.finish();

@@ -154,7 +154,11 @@ int run(Cli& cli)
         if (!hif_map)
             throw std::runtime_error("config '" + cfg_file +
                                      "', section [map] defines no CHeightIntervalMap");
-        hif_map->insertionOptions.online_window = true;
+        if (!hif_map->params().online)
+            throw std::runtime_error(
+                "config '" + cfg_file +
+                "': its CHeightIntervalMap is offline (online=false), but SLAM classifies each "
+                "scan as it comes: set online=true (as share/hif/config/icp-slam-3d.ini does)");
     }
     auto source = hif::apps::openScanSource(input, {}, /*poses_required=*/false);
     std::cout << kTag << " input  : " << input << "\n"

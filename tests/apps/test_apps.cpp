@@ -385,6 +385,13 @@ TEST_F(SyntheticPipeline, ThreadsAndHeldScansGiveIdenticalResults)
                                 "/x -q --online "
                                 "--hold-scans");
     expectError(r, "--hold-scans applies to offline mode only");
+    // Online or offline is the map's (its config's `online`): a run the other way is refused.
+    r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + root_ +
+                                "/x -q --online -c " HIF_SHARE_DIR "/config/kitti.ini");
+    expectError(r, "makes an offline map (online=false), but --online classifies each scan");
+    r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + root_ +
+                                "/x -q -c " HIF_SHARE_DIR "/config/kitti-online.ini");
+    expectError(r, "makes an online map (online=true), but without --online");
     r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + root_ + "/x -q --threads 0");
     expectError(r, "--threads 0 is not in [1, 1024]");
 }

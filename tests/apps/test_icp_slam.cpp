@@ -121,8 +121,22 @@ TEST(HifIcpSlam, TracksARawlogWithoutPoses)
             arch << *obs;
         }
     }
-    const auto r = runApp("hif-icp-slam", "-i " + d + "/no_poses.rawlog -o " + d + "/out -q");
+    auto r = runApp("hif-icp-slam", "-i " + d + "/no_poses.rawlog -o " + d + "/out -q");
     ASSERT_EQ(r.code, 0) << r.output;
+    // SLAM classifies each scan as it comes: a config whose map is offline is refused.
+    {
+        std::ifstream in(HIF_SHARE_DIR "/config/icp-slam-3d.ini");
+        std::stringstream ini;
+        ini << in.rdbuf();
+        std::string text = ini.str();
+        const std::size_t at = text.find("online=true");
+        ASSERT_NE(at, std::string::npos);
+        text.replace(at, 11, "online=false");
+        std::ofstream(d + "/offline.ini") << text;
+    }
+    const auto off = runApp("hif-icp-slam", "-i " + d + "/no_poses.rawlog -o " + d + "/off -q -c " +
+                                                d + "/offline.ini");
+    expectError(off, "is offline (online=false), but SLAM classifies each scan as it comes");
     EXPECT_NE(r.output.find("no trajectory error"), std::string::npos) << r.output;
     const nlohmann::json s = readJson(d + "/out/summary.json");
     EXPECT_TRUE(s["trajectory_rmse_m"].is_null());

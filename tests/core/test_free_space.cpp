@@ -4,9 +4,9 @@
  * @brief  The free-space test (Params::free_space_window) on a ray-cast scene: a person walks
  *         across in front of a wall, past a pole, for ten scans; the map alone keeps the person,
  *         the test removes it, and the ground, the wall and the pole stay; a cyclist's wheels go
- *         with it into the pillars next to its rider. Also the window's rules (its own scan is
- *         no evidence, only scans within the window count, online sees the past only) and the
- *         minimum range.
+ *         with it into the pillars next to its rider. Also which scans judge (a scan is no
+ *         evidence about itself, only scans within the window count, online sees the past
+ *         only), the test's scans (FreeSpaceTest) and the minimum range.
  */
 #include <gtest/gtest.h>
 
@@ -16,14 +16,14 @@
 #include <optional>
 #include <stdexcept>
 
+#include "hif/FreeSpaceTest.h"
 #include "hif/PillarGrid.h"
-#include "hif/ScanWindow.h"
 
 using namespace hif;
 
 namespace
 {
-/** The windows of these tests use the layout of a map without a sensor model. */
+/** The tests' images use the layout of a map without a sensor model. */
 const RangeImageLayout kLayout = RangeImageLayout::forSensor(std::nullopt);
 
 enum What : uint8_t
@@ -173,25 +173,26 @@ struct Removed
     }
 };
 
-/** Offline: the map of all scans; each scan classified with the window of all of them. */
-Removed offline(const std::vector<Scan>& scans, const Params& prm, bool with_window)
+/** A test holding all of `scans`. */
+FreeSpaceTest holding(const std::vector<Scan>& scans)
+{
+    FreeSpaceTest test(scans.size());
+    for (const Scan& s : scans) test.add(s.view(), s.pose, kLayout);
+    return test;
+}
+
+/** Offline: the map of all scans; each scan classified with the test holding all of them. */
+Removed offline(const std::vector<Scan>& scans, const Params& prm, bool with_test)
 {
     PillarGrid grid(GridGeometry(), prm);
-    ScanWindow window;
-    for (std::size_t i = 0; i < scans.size(); ++i)
-    {
-        grid.insertScan(scans[i].view(), scans[i].pose);
-        window.add(i, scans[i].view(), scans[i].pose, kLayout);
-    }
+    for (const Scan& s : scans) grid.insertScan(s.view(), s.pose);
+    const FreeSpaceTest test = holding(scans);
     Removed r;
-    for (std::size_t i = 0; i < scans.size(); ++i)
+    for (const Scan& s : scans)
     {
         std::vector<uint8_t> dyn;
-        if (with_window)
-            grid.classify(scans[i].view(), dyn, scans[i].pose, window, i);
-        else
-            grid.classify(scans[i].view(), dyn, scans[i].pose);
-        r.add(scans[i], dyn);
+        grid.classify(s.view(), dyn, s.pose, with_test ? &test : nullptr);
+        r.add(s, dyn);
     }
     return r;
 }
@@ -259,18 +260,17 @@ TEST(FreeSpaceTest, OffByDefaultAndOnlyScansWithinTheWindowCount)
     Params near = freeSpaceParams();
     near.free_space_window = 1;
     PillarGrid grid(GridGeometry(), freeSpaceParams()), grid1(GridGeometry(), near);
-    ScanWindow window;
-    for (std::size_t i = 0; i < scans.size(); ++i)
+    for (const Scan& s : scans)
     {
-        grid.insertScan(scans[i].view(), scans[i].pose);
-        grid1.insertScan(scans[i].view(), scans[i].pose);
-        window.add(i, scans[i].view(), scans[i].pose, kLayout);
+        grid.insertScan(s.view(), s.pose);
+        grid1.insertScan(s.view(), s.pose);
     }
+    const FreeSpaceTest test = holding(scans);
     std::vector<uint8_t> dyn;
     Removed all, one;
-    grid.classify(scans[0].view(), dyn, scans[0].pose, window, 0);
+    EXPECT_EQ(grid.classify(scans[0].view(), dyn, scans[0].pose, &test).free_space_scans, 9u);
     all.add(scans[0], dyn);
-    grid1.classify(scans[0].view(), dyn, scans[0].pose, window, 0);
+    EXPECT_EQ(grid1.classify(scans[0].view(), dyn, scans[0].pose, &test).free_space_scans, 1u);
     one.add(scans[0], dyn);
     EXPECT_GE(all.pct(kPerson), 90.0);
     EXPECT_LT(one.pct(kPerson), 70.0);
@@ -283,27 +283,37 @@ TEST(FreeSpaceTest, AScanIsNoEvidenceAboutItselfAndOnlineSeesThePastOnly)
     for (const Scan& s : scans) grid.insertScan(s.view(), s.pose);
     std::vector<uint8_t> dyn;
 
-    // A window holding the scan alone says nothing about it.
-    ScanWindow alone;
-    alone.add(4, scans[4].view(), scans[4].pose, kLayout);
-    const ClassifyStats st = grid.classify(scans[4].view(), dyn, scans[4].pose, alone, 4);
+    // A test holding the scan alone says nothing about it.
+    FreeSpaceTest alone(1);
+    alone.add(scans[4].view(), scans[4].pose, kLayout);
+    const ClassifyStats st = grid.classify(scans[4].view(), dyn, scans[4].pose, &alone);
     EXPECT_EQ(st.seen_through_points, 0u);
+    EXPECT_EQ(st.free_space_scans, 0u);
 
-    // Online: the map and the window of the scans up to scan 6, which is classified as a
-    // newer scan than the whole window (no id).
-    PillarGrid online_grid(GridGeometry(), freeSpaceParams());
-    ScanWindow past;
+    // Online: the map and the test of the scans up to scan 6. Scan 6 added to the test (as an
+    // online map does when inserting it) is judged by the scans before it, the same as when the
+    // test does not hold it (a scan newer than all it holds).
+    Params online_prm = freeSpaceParams();
+    online_prm.online = true;
+    PillarGrid online_grid(GridGeometry(), online_prm);
+    FreeSpaceTest past(FreeSpaceTest::capacityFor(online_prm));
+    EXPECT_EQ(past.capacity(), 11u);
     for (std::size_t i = 0; i < 6; ++i)
     {
         online_grid.insertScan(scans[i].view(), scans[i].pose);
-        past.add(i, scans[i].view(), scans[i].pose, kLayout);
+        past.add(scans[i].view(), scans[i].pose, kLayout);
     }
     const Scan& now = scans[6];
     online_grid.insertScan(now.view(), now.pose);
     std::vector<uint8_t> map_only;
     online_grid.classify(now.view(), map_only, now.pose);
-    const ClassifyStats online =
-        online_grid.classify(now.view(), dyn, now.pose, past, std::nullopt);
+    const ClassifyStats online = online_grid.classify(now.view(), dyn, now.pose, &past);
+    EXPECT_EQ(online.free_space_scans, 6u);
+    FreeSpaceTest with_now = past;
+    with_now.add(now.view(), now.pose, kLayout);
+    std::vector<uint8_t> dyn_held;
+    EXPECT_EQ(online_grid.classify(now.view(), dyn_held, now.pose, &with_now).free_space_scans, 6u);
+    EXPECT_EQ(dyn_held, dyn);
     Removed before, after;
     before.add(now, map_only);
     after.add(now, dyn);
@@ -311,10 +321,8 @@ TEST(FreeSpaceTest, AScanIsNoEvidenceAboutItselfAndOnlineSeesThePastOnly)
     EXPECT_GE(after.pct(kPerson), 90.0);
     EXPECT_LT(before.pct(kPerson), after.pct(kPerson) - 20.0);
     // The first scan has no past: nothing shows its walker gone.
-    ScanWindow none;
-    EXPECT_EQ(
-        grid.classify(scans[0].view(), dyn, scans[0].pose, none, std::nullopt).seen_through_points,
-        0u);
+    const FreeSpaceTest none(11);
+    EXPECT_EQ(grid.classify(scans[0].view(), dyn, scans[0].pose, &none).seen_through_points, 0u);
 }
 
 // The walker crosses in the direction of the sweep (azimuth increasing, y increasing), so the
@@ -337,12 +345,12 @@ TEST(FreeSpaceTest, AWalkerIsShownByItsLeadingEdgeWhicheverWayTheSweepGoes)
     auto secondScanOnline = [&](const std::vector<Scan>& scans)
     {
         PillarGrid grid(GridGeometry(), prm);
-        ScanWindow past;
+        FreeSpaceTest past(1);
         grid.insertScan(scans[0].view(), scans[0].pose);
-        past.add(0, scans[0].view(), scans[0].pose, kLayout);
+        past.add(scans[0].view(), scans[0].pose, kLayout);
         grid.insertScan(scans[1].view(), scans[1].pose);
         std::vector<uint8_t> dyn;
-        grid.classify(scans[1].view(), dyn, scans[1].pose, past, std::nullopt);
+        grid.classify(scans[1].view(), dyn, scans[1].pose, &past);
         Removed r;
         r.add(scans[1], dyn);
         return r;
@@ -355,45 +363,53 @@ TEST(FreeSpaceTest, AWalkerIsShownByItsLeadingEdgeWhicheverWayTheSweepGoes)
         EXPECT_LE(fwd.pct(w), 2.0) << "kind " << int(w);
 }
 
-TEST(ScanWindow, IdsIncreaseAndOldScansAreDropped)
+TEST(FreeSpaceTestScans, TheNewestAreKeptAndAScanIsFoundByItsPointsAndPose)
 {
     const std::vector<Scan> scans = makeScans();
-    ScanWindow w;
-    w.add(3, scans[0].view(), scans[0].pose, kLayout);
-    w.add(5, scans[1].view(), scans[1].pose, kLayout);
-    EXPECT_THROW(w.add(5, scans[2].view(), scans[2].pose, kLayout), std::invalid_argument);
-    w.add(8, scans[2].view(), scans[2].pose, kLayout);
-    EXPECT_EQ(w.size(), 3u);
-    w.dropBefore(5);
-    ASSERT_EQ(w.size(), 2u);
-    EXPECT_EQ(w.scans().front().id, 5u);
-    EXPECT_EQ(w.lastId(), 8u);
-    EXPECT_GT(w.memoryBytes(), 2 * 400000u);  // two images of 2 bytes a cell
+    Params p = freeSpaceParams();
+    p.online = false;
+    EXPECT_EQ(FreeSpaceTest::capacityFor(p), 21u);  // 10 on each side of the one classified
+    p.free_space_window = 0;
+    EXPECT_EQ(FreeSpaceTest::capacityFor(p), 0u);
+    FreeSpaceTest off;  // capacity 0: keeps nothing
+    off.add(scans[0].view(), scans[0].pose, kLayout);
+    EXPECT_TRUE(off.empty());
 
-    // Entries built apart (makeScan, as hif-clean's reader thread does) are the same as those
-    // add() builds, and a window sliding over many scans stays the same size either way.
-    const ScanWindow::Scan made = ScanWindow::makeScan(9, scans[2].view(), scans[2].pose, kLayout);
-    EXPECT_EQ(made.image, w.scans().back().image);
-    EXPECT_TRUE(made.sensor_to_world.isApprox(w.scans().back().sensor_to_world));
-    EXPECT_THROW(w.add(ScanWindow::makeScan(8, scans[2].view(), scans[2].pose, kLayout)),
-                 std::invalid_argument);
-    for (const bool apart : {false, true})
+    FreeSpaceTest t(3);
+    for (std::size_t i = 0; i < 5; ++i) t.add(scans[i].view(), scans[i].pose, kLayout);
+    ASSERT_EQ(t.size(), 3u);
+    EXPECT_FALSE(t.find(scans[1].view(), scans[1].pose));
+    EXPECT_EQ(t.find(scans[2].view(), scans[2].pose), std::optional<std::size_t>(0));
+    EXPECT_EQ(t.find(scans[4].view(), scans[4].pose), std::optional<std::size_t>(2));
+    // The same points at another pose, or one point moved by a float's last bit, are another
+    // scan.
+    Eigen::Isometry3d moved = scans[4].pose;
+    moved.translation().x() += 1e-9;
+    EXPECT_FALSE(t.find(scans[4].view(), moved));
+    Scan nudged = scans[4];
+    nudged.z[7] = std::nextafter(nudged.z[7], 1.0f);
+    EXPECT_FALSE(t.find(nudged.view(), nudged.pose));
+    EXPECT_EQ(FreeSpaceTest::fingerprint(scans[4].view(), scans[4].pose),
+              t.scans().back().fingerprint);
+    EXPECT_GT(t.memoryBytes(), 3 * 400000u);  // three images of 2 bytes a cell
+
+    // A test sliding over many scans holds the same memory; a smaller capacity drops the
+    // oldest; a scan as kept by another test is taken whole, one of the wrong size refused.
+    std::size_t bytes_at_20 = 0;
+    for (std::size_t id = 0; id < 60; ++id)
     {
-        ScanWindow slide;
-        std::size_t bytes_at_20 = 0;
-        for (std::size_t id = 0; id < 60; ++id)
-        {
-            const Scan& sc = scans[id % scans.size()];
-            if (apart)
-                slide.add(ScanWindow::makeScan(id, sc.view(), sc.pose, kLayout));
-            else
-                slide.add(id, sc.view(), sc.pose, kLayout);
-            slide.dropBefore(id >= 5 ? id - 5 : 0);
-            if (id == 20) bytes_at_20 = slide.memoryBytes();
-        }
-        EXPECT_EQ(slide.size(), 6u);
-        EXPECT_EQ(slide.memoryBytes(), bytes_at_20) << (apart ? "makeScan" : "add(id, ...)");
+        t.add(scans[id % scans.size()].view(), scans[id % scans.size()].pose, kLayout);
+        if (id == 20) bytes_at_20 = t.memoryBytes();
     }
+    EXPECT_EQ(t.memoryBytes(), bytes_at_20);
+    t.setCapacity(2);
+    EXPECT_EQ(t.size(), 2u);
+    FreeSpaceTest copy(2);
+    for (const FreeSpaceTest::Scan& s : t.scans()) copy.add(s);
+    EXPECT_TRUE(copy == t);
+    FreeSpaceTest::Scan bad = t.scans().front();
+    bad.image.pop_back();
+    EXPECT_THROW(copy.add(bad), std::invalid_argument);
 }
 
 TEST(MinRange, NearPointsAreNotInsertedAndAreDynamic)

@@ -465,9 +465,10 @@ TEST(ParamsPaper, TurnsOffEveryAddition)
     EXPECT_EQ(p.beam_spacing_deg, 0.0);
     EXPECT_FALSE(p.sensor_from_scans);
     EXPECT_FALSE(p.miss_needs_beam);
+    EXPECT_FALSE(p.online);  // the paper cleans a sequence offline
     Params q = p;
     q.high_height_preservation = q.unseen_height_prior = q.sensor_from_scans = true;
-    q.miss_needs_beam = true;
+    q.miss_needs_beam = q.online = true;
     q.beam_spacing_deg = Params().beam_spacing_deg;
     EXPECT_EQ(q, Params());  // and nothing else differs from the defaults
 }

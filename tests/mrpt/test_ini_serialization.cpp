@@ -329,16 +329,16 @@ TEST(CHeightIntervalMapSerialization, AHugeIntervalCountInAShortFileIsNotAllocat
     auto out = mrpt::serialization::archiveFrom(buf);
     out << map;
     // The stream ends with the one pillar's interval count (uint32), its intervals (12 bytes
-    // each), the sensor model's flag (0: one point gives no model) and MRPT's end-of-object
-    // byte.
+    // each), the sensor model's flag (0: one point gives no model), the free-space test's scan
+    // count (uint32, 0: the test is off) and MRPT's end-of-object byte.
     const uint32_t intervals =
         static_cast<uint32_t>(map.grid().sortedPillars().at(0).second->intervals.size());
     ASSERT_GE(intervals, 1u);
     std::vector<uint8_t> bytes(
         static_cast<const uint8_t*>(buf.getRawBufferData()),
         static_cast<const uint8_t*>(buf.getRawBufferData()) + buf.getTotalBytesCount());
-    ASSERT_EQ(bytes[bytes.size() - 2], 0u) << "no sensor model";
-    const std::size_t at = bytes.size() - 2 - 12 * intervals - 4;
+    ASSERT_EQ(bytes[bytes.size() - 6], 0u) << "no sensor model";
+    const std::size_t at = bytes.size() - 6 - 12 * intervals - 4;
     uint32_t count = 0;
     std::memcpy(&count, &bytes[at], 4);
     ASSERT_EQ(count, intervals);
@@ -371,7 +371,7 @@ TEST(CHeightIntervalMapIni, ShippedKittiConfigsLoadTheDocumentedDefaults)
         mrpt::maps::CMultiMetricMap multi(inits);
         const auto map = multi.mapByClass<CHeightIntervalMap>();
         ASSERT_TRUE(map) << name;
-        // They differ from hif::Params() in what doc/algorithm.md measures: offline,
+        // They differ from hif::Params() in what doc/algorithm.md measures: offline, the mode,
         // p_empty_init, the see-through misses and the free-space test; online, the free-space
         // test with a lower share; the DynamicMap layout, a minimum range too.
         hif::Params expected;
@@ -379,6 +379,7 @@ TEST(CHeightIntervalMapIni, ShippedKittiConfigsLoadTheDocumentedDefaults)
         expected.free_space_fraction = 0.4;
         if (name != "kitti-online.ini")
         {
+            expected.online = false;
             expected.p_empty_init = 0.42;
             expected.see_through_range = 35.0;
             expected.see_through_margin = 2.5;

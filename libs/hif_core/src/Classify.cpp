@@ -12,21 +12,8 @@
 namespace hif
 {
 ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& is_dynamic,
-                                   const Eigen::Isometry3d& T) const
-{
-    return classifyImpl(pts, is_dynamic, T, nullptr, std::nullopt);
-}
-
-ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& is_dynamic,
-                                   const Eigen::Isometry3d& T, const ScanWindow& window,
-                                   std::optional<std::size_t> self) const
-{
-    return classifyImpl(pts, is_dynamic, T, &window, self);
-}
-
-ClassifyStats PillarGrid::classifyImpl(const PointsView& pts, std::vector<uint8_t>& is_dynamic,
-                                       const Eigen::Isometry3d& T, const ScanWindow* window,
-                                       std::optional<std::size_t> self) const
+                                   const Eigen::Isometry3d& T,
+                                   const FreeSpaceTest* free_space) const
 {
     // Reused by later calls on this thread. Worker threads must use this thread's object, so
     // the lambda below captures a reference, never the thread_local name.
@@ -63,10 +50,10 @@ ClassifyStats PillarGrid::classifyImpl(const PointsView& pts, std::vector<uint8_
                       });
     ClassifyStats st;
     st.static_points = n_static;
-    if (window && params_.free_space_window > 0)
+    if (free_space && !free_space->empty() && params_.free_space_window > 0)
     {
-        st.seen_through_points =
-            detail::markSeenThrough(*this, scan, pts, T, *window, self, is_dynamic);
+        st.seen_through_points = detail::markSeenThrough(*this, scan, pts, T, *free_space,
+                                                         is_dynamic, st.free_space_scans);
         st.static_points -= st.seen_through_points;
     }
     // A repeat has the pillar and height cell of the point before it, hence its class.

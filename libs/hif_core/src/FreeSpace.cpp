@@ -27,13 +27,13 @@ enum class View : uint8_t
     Free       ///< the beam toward it returned clearly beyond, and none near it
 };
 
-/** The window's scans that may judge the classified scan, with what a test needs. */
+/** The test's scans that may judge the classified scan, with what a test needs. */
 struct Judge
 {
-    std::size_t id;
+    std::size_t pos;    ///< in FreeSpaceTest::scans()
     Eigen::Vector3d t;  ///< sensor position, world frame
     Eigen::Matrix3d Rt;
-    const uint16_t* image;  ///< centimetres (ScanWindow::Scan::image)
+    const uint16_t* image;  ///< centimetres (FreeSpaceTest::Scan::image)
     const RangeImageLayout* layout;
     double baseline = 0.0;  ///< distance to the classified scan's sensor
 
@@ -41,8 +41,8 @@ struct Judge
     [[nodiscard]] float at(int r, int c) const
     {
         const uint16_t v = image[static_cast<std::size_t>(r) * layout->cols + c];
-        return v == ScanWindow::kNoReturn ? std::numeric_limits<float>::infinity()
-                                          : static_cast<float>(v) * 0.01f;
+        return v == FreeSpaceTest::kNoReturn ? std::numeric_limits<float>::infinity()
+                                             : static_cast<float>(v) * 0.01f;
     }
 };
 
@@ -88,7 +88,7 @@ View look(const Judge& j, const Eigen::Vector3d& p, double margin0, double margi
     return near ? View::Vetoed : View::Free;  // passed, unless something is near it
 }
 
-/** What the window's scans say about one point, all opinions taken together. */
+/** What the test's scans say about one point, all opinions taken together. */
 enum class Verdict : uint8_t
 {
     Unjudged,  ///< no scan gave an opinion
@@ -209,20 +209,25 @@ bool reachesShare(const std::vector<uint32_t>& tested, double fraction, VerdictO
 }  // namespace
 
 std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, const PointsView& pts,
-                            const Eigen::Isometry3d& T, const ScanWindow& window,
-                            std::optional<std::size_t> self, std::vector<uint8_t>& is_dynamic)
+                            const Eigen::Isometry3d& T, const FreeSpaceTest& test,
+                            std::vector<uint8_t>& is_dynamic, std::size_t& judge_count)
 {
     const Params& prm = grid.params();
     const double res = grid.geometry().height_resolution;
+    // The scan classified, if the test holds it: it is not its own evidence, and only the
+    // scans within free_space_window of it count. Otherwise it is newer than all of them.
+    const std::optional<std::size_t> self = test.find(pts, T);
     std::vector<Judge> judges;
-    for (const ScanWindow::Scan& s : window.scans())
+    const auto& scans = test.scans();
+    for (std::size_t k = 0; k < scans.size(); ++k)
     {
-        if (self &&
-            (s.id == *self || (s.id < *self ? *self - s.id : s.id - *self) > prm.free_space_window))
+        if (self && (k == *self || (k < *self ? *self - k : k - *self) > prm.free_space_window))
             continue;
-        judges.push_back({s.id, s.sensor_to_world.translation(), s.world_to_sensor_rotation,
-                          s.image.data(), &s.layout});
+        const FreeSpaceTest::Scan& s = scans[k];
+        judges.push_back({k, s.sensor_to_world.translation(),
+                          s.sensor_to_world.linear().transpose(), s.image.data(), &s.layout});
     }
+    judge_count = judges.size();
     if (judges.empty()) return 0;
 
     const Eigen::Matrix3d R = T.linear();
@@ -236,12 +241,12 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
                                 ? 1.0
                                 : std::sin(prm.free_space_max_parallax_deg * M_PI / 180.0),
                             std::cos(prm.free_space_max_parallax_deg * M_PI / 180.0)};
-    // Where the classified scan sits among the judges by id (a scan without one is newer
-    // than the whole window, as online).
+    // Where the classified scan sits among the judges in time (one the test does not hold is
+    // newer than all of them, as online).
     const std::size_t self_pos =
         self ? static_cast<std::size_t>(std::lower_bound(judges.begin(), judges.end(), *self,
-                                                         [](const Judge& j, std::size_t id)
-                                                         { return j.id < id; }) -
+                                                         [](const Judge& j, std::size_t pos)
+                                                         { return j.pos < pos; }) -
                                         judges.begin())
              : judges.size();
 

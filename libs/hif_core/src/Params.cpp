@@ -33,6 +33,7 @@ Params Params::paper()
     p.beam_spacing_deg = 0.0;
     p.sensor_from_scans = false;
     p.miss_needs_beam = false;
+    p.online = false;  // the paper cleans a sequence offline
     return p;
 }
 

@@ -18,7 +18,7 @@ using hif::mrpt_adapter::SensorPoints;
 MAP_DEFINITION_REGISTER("hif::CHeightIntervalMap,CHeightIntervalMap", hif::CHeightIntervalMap)
 
 CHeightIntervalMap::CHeightIntervalMap(const GridGeometry& geometry, const Params& params)
-    : grid_(geometry, params)
+    : mrpt::system::COutputLogger("hif::CHeightIntervalMap"), grid_(geometry, params)
 {
     static_cast<Params&>(insertionOptions) = params;
 }
@@ -39,6 +39,7 @@ void CHeightIntervalMap::applyOptions()
         throw std::invalid_argument("hif::CHeightIntervalMap: invalid threads = 0 (must be >= 1)");
     const Params& p = insertionOptions;
     if (p != grid_.params()) grid_.setParams(p);
+    free_space_.setCapacity(FreeSpaceTest::capacityFor(p));
     if (insertionOptions.threads != grid_.threads())
         grid_.setThreads(static_cast<std::size_t>(insertionOptions.threads));
 }
@@ -47,8 +48,8 @@ void CHeightIntervalMap::internal_clear()
 {
     grid_.clear();
     last_insert_ = {};
-    window_.clear();
-    last_obs_ = nullptr;
+    free_space_.clear();
+    classified_ = warned_no_neighbours_ = warned_inserted_after_ = false;
 }
 
 bool CHeightIntervalMap::internal_insertObservation(
@@ -60,18 +61,18 @@ bool CHeightIntervalMap::internal_insertObservation(
     const mrpt::poses::CPose3D robot = robotPose ? *robotPose : mrpt::poses::CPose3D();
     const Eigen::Isometry3d T = mrpt_adapter::toIsometry(robot + sp.sensor_pose);
     last_insert_ = grid_.insertScan(sp.view, T);
-    const std::size_t keep = insertionOptions.online_window ? params().free_space_window : 0;
-    if (keep > 0)
+    if (params().online)
+        free_space_.add(sp.view, T, grid_.imageLayout());  // the past of the next classify()
+    else if (classified_ && !warned_inserted_after_)
     {
-        // The scan and the `keep` before it: the evidence for classifying it, or a newer one.
-        window_.add(scans_inserted_, sp.view, T, grid_.imageLayout());
-        window_.dropBefore(scans_inserted_ >= keep ? scans_inserted_ - keep : 0);
-        last_obs_ = &obs;
-        last_stamp_ = obs.timestamp;
+        warned_inserted_after_ = true;
+        MRPT_LOG_WARN(
+            "A scan was inserted after scans were classified, with "
+            "an offline map (online=false): those were judged by a map that had not seen the "
+            "scans after them, and offline settings (kitti.ini: p_empty_init 0.42) find a "
+            "height seen once dynamic. To classify each scan as it comes, use an online map "
+            "(online=true, kitti-online.ini).");
     }
-    else
-        window_.clear();
-    ++scans_inserted_;
     return last_insert_.points_used > 0;
 }
 
@@ -138,47 +139,39 @@ ClassifyStats CHeightIntervalMap::classify(const mrpt::obs::CObservation& obs,
                                            const mrpt::poses::CPose3D& robotPose,
                                            std::vector<uint8_t>& isDynamic) const
 {
-    if (window_.empty() || params().free_space_window == 0)
-        return classify(obs, robotPose, isDynamic, window_, std::nullopt);
-    // The observation inserted last is in the window: it is not evidence about itself.
-    const bool last = &obs == last_obs_ && obs.timestamp == last_stamp_;
-    return classify(obs, robotPose, isDynamic, window_,
-                    last ? std::optional<std::size_t>(window_.lastId()) : std::nullopt);
-}
-
-ClassifyStats CHeightIntervalMap::classify(const mrpt::obs::CObservation& obs,
-                                           const mrpt::poses::CPose3D& robotPose,
-                                           std::vector<uint8_t>& isDynamic,
-                                           const ScanWindow& window,
-                                           std::optional<std::size_t> self) const
-{
     SensorPoints sp;
     if (!mrpt_adapter::sensorPoints(obs, sp))
         throw std::invalid_argument(std::string("hif::CHeightIntervalMap::classify: cannot read "
                                                 "points from a ") +
                                     obs.GetRuntimeClass()->className);
+    const Params& p = params();
+    if (!p.online)
+    {
+        classified_ = true;
+        if (p.free_space_window > 0 && free_space_.empty() && !warned_no_neighbours_)
+        {
+            warned_no_neighbours_ = true;
+            MRPT_LOG_WARN(
+                "An offline map (online=false) classified a scan "
+                "without the scans around it: the free-space test judges it with the scans "
+                "given to addToFreeSpaceTest() after every scan is inserted (the second pass), "
+                "none so far. To classify each scan as it comes, use an online map "
+                "(online=true, kitti-online.ini).");
+        }
+    }
     return grid_.classify(sp.view, isDynamic, mrpt_adapter::toIsometry(robotPose + sp.sensor_pose),
-                          window, self);
+                          &free_space_);
 }
 
-bool CHeightIntervalMap::addToWindow(ScanWindow& window, std::size_t id,
-                                     const mrpt::obs::CObservation& obs,
-                                     const mrpt::poses::CPose3D& robotPose) const
+bool CHeightIntervalMap::addToFreeSpaceTest(const mrpt::obs::CObservation& obs,
+                                            const mrpt::poses::CPose3D& robotPose)
 {
     SensorPoints sp;
     if (!mrpt_adapter::sensorPoints(obs, sp)) return false;
-    window.add(id, sp.view, mrpt_adapter::toIsometry(robotPose + sp.sensor_pose),
-               grid_.imageLayout());
+    applyOptions();
+    free_space_.add(sp.view, mrpt_adapter::toIsometry(robotPose + sp.sensor_pose),
+                    grid_.imageLayout());
     return true;
-}
-
-std::optional<ScanWindow::Scan> CHeightIntervalMap::makeWindowScan(
-    std::size_t id, const mrpt::obs::CObservation& obs, const mrpt::poses::CPose3D& robotPose) const
-{
-    SensorPoints sp;
-    if (!mrpt_adapter::sensorPoints(obs, sp)) return std::nullopt;
-    return ScanWindow::makeScan(id, sp.view, mrpt_adapter::toIsometry(robotPose + sp.sensor_pose),
-                                grid_.imageLayout());
 }
 
 bool CHeightIntervalMap::internal_canComputeObservationLikelihood(

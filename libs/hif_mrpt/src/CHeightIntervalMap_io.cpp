@@ -22,10 +22,91 @@ namespace
 {
 /** Version 1 added the see-through options, version 2 the free-space test and the minimum
  *  range (Field::since_version), version 3 the sensor model (its option, and the model after
- *  the pillars); every older version is still read. */
-constexpr uint8_t kSerializationVersion = 3;
+ *  the pillars), version 4 the `online` option and the free-space test's scans (after the
+ *  model); every older version is still read. */
+constexpr uint8_t kSerializationVersion = 4;
 /** More beams than any LiDAR has: a larger count in a file is corruption. */
 constexpr uint32_t kMaxBeams = 4096;
+/** Bounds on a free-space test in a file (the window is at most 50 scans on each side; an
+ *  image of 0.05-degree columns and rows over the whole sphere is 26 M cells). */
+constexpr uint32_t kMaxTestScans = 101;
+constexpr int32_t kMaxImageCols = 7200;
+constexpr int32_t kMaxImageRows = 3600;
+
+/** A free-space test's scan. Its image is mostly "no return": it is written as the cells that
+ *  hold one, each as the number of cells skipped since the last (a varint) and its value (two
+ *  bytes, little-endian), in one buffer. */
+void writeTestScan(mrpt::serialization::CArchive& out, const FreeSpaceTest::Scan& s)
+{
+    out << s.fingerprint;
+    const Eigen::Matrix4d& m = s.sensor_to_world.matrix();
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c) out << m(r, c);
+    out << static_cast<int32_t>(s.layout.cols) << static_cast<int32_t>(s.layout.rows)
+        << s.layout.tan_min << s.layout.tan_max << s.layout.tan_res;
+    std::vector<uint8_t> bytes;
+    bytes.reserve(s.image.size() / 2);
+    std::size_t skipped = 0;
+    for (const uint16_t v : s.image)
+    {
+        if (v == FreeSpaceTest::kNoReturn)
+        {
+            ++skipped;
+            continue;
+        }
+        for (; skipped >= 0x80; skipped >>= 7) bytes.push_back(uint8_t(0x80 | (skipped & 0x7F)));
+        bytes.push_back(uint8_t(skipped));
+        skipped = 0;
+        bytes.push_back(uint8_t(v & 0xFF));
+        bytes.push_back(uint8_t(v >> 8));
+    }
+    out << static_cast<uint32_t>(bytes.size());
+    out.WriteBuffer(bytes.data(), bytes.size());
+}
+
+FreeSpaceTest::Scan readTestScan(mrpt::serialization::CArchive& in)
+{
+    FreeSpaceTest::Scan s;
+    in >> s.fingerprint;
+    Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c) in >> m(r, c);
+    s.sensor_to_world.matrix() = m;
+    int32_t cols = 0, rows = 0;
+    in >> cols >> rows >> s.layout.tan_min >> s.layout.tan_max >> s.layout.tan_res;
+    if (cols < 1 || cols > kMaxImageCols || rows < 1 || rows > kMaxImageRows)
+        THROW_EXCEPTION_FMT("Corrupt hif map: a free-space image of %d x %d cells", cols, rows);
+    s.layout.cols = cols;
+    s.layout.rows = rows;
+    s.image.assign(s.layout.cells(), FreeSpaceTest::kNoReturn);
+    uint32_t n = 0;
+    in >> n;
+    // At most 4 bytes a cell (a varint of up to 2 bytes and the value): more is corruption.
+    if (n > 4 * s.image.size())
+        THROW_EXCEPTION_FMT("Corrupt hif map: %u bytes for an image of %zu cells", n,
+                            s.image.size());
+    std::vector<uint8_t> bytes(n);
+    if (in.ReadBuffer(bytes.data(), n) != n)
+        THROW_EXCEPTION("Corrupt hif map: a free-space image ends early");
+    std::size_t cell = 0, k = 0;
+    while (k < n)
+    {
+        std::size_t skip = 0;
+        for (int shift = 0;; shift += 7)
+        {
+            if (k >= n || shift > 28) THROW_EXCEPTION("Corrupt hif map: a free-space image's cells");
+            const uint8_t b = bytes[k++];
+            skip |= std::size_t(b & 0x7F) << shift;
+            if (!(b & 0x80)) break;
+        }
+        cell += skip;
+        if (cell >= s.image.size() || k + 2 > n)
+            THROW_EXCEPTION("Corrupt hif map: a free-space image's cells");
+        s.image[cell++] = uint16_t(bytes[k] | bytes[k + 1] << 8);
+        k += 2;
+    }
+    return s;
+}
 }  // namespace
 
 void CHeightIntervalMap::TInsertionOptions::writeToStream(mrpt::serialization::CArchive& out) const
@@ -93,11 +174,15 @@ void CHeightIntervalMap::serializeTo(mrpt::serialization::CArchive& out) const
     }
     const std::optional<SensorModel>& m = grid_.sensorModel();
     out << static_cast<uint8_t>(m ? 1 : 0);
-    if (!m) return;
-    out << static_cast<uint32_t>(m->beam_elevations_deg.size());
-    for (double e : m->beam_elevations_deg) out << e;
-    out << m->elevation_min_deg << m->elevation_max_deg << m->vertical_spacing_deg
-        << m->horizontal_resolution_deg << m->azimuth_coverage_deg;
+    if (m)
+    {
+        out << static_cast<uint32_t>(m->beam_elevations_deg.size());
+        for (double e : m->beam_elevations_deg) out << e;
+        out << m->elevation_min_deg << m->elevation_max_deg << m->vertical_spacing_deg
+            << m->horizontal_resolution_deg << m->azimuth_coverage_deg;
+    }
+    out << static_cast<uint32_t>(free_space_.size());
+    for (const FreeSpaceTest::Scan& s : free_space_.scans()) writeTestScan(out, s);
 }
 
 void CHeightIntervalMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_t version)
@@ -157,7 +242,17 @@ void CHeightIntervalMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_
             }
         }
     }
+    free_space_ = FreeSpaceTest(FreeSpaceTest::capacityFor(params()));
+    if (version >= 4)
+    {
+        uint32_t scans = 0;
+        in >> scans;
+        if (scans > kMaxTestScans)
+            THROW_EXCEPTION_FMT("Corrupt hif map: a free-space test of %u scans", scans);
+        for (uint32_t k = 0; k < scans; ++k) free_space_.add(readTestScan(in));
+    }
     last_insert_ = {};
+    classified_ = warned_no_neighbours_ = warned_inserted_after_ = false;
 }
 
 void CHeightIntervalMap::saveMetricMapRepresentationToFile(const std::string& prefix) const

@@ -91,11 +91,10 @@ void CHeightIntervalMap::TInsertionOptions::loadFromConfigFile(
 {
     const IniSection section(c, s);
     std::vector<std::string> known = keysOf<Params>();
-    known.insert(known.end(), {"threads", "online_window"});
+    known.emplace_back("threads");
     section.requireKnownKeys(known);
     loadFields<Params>(*this, section);
     section.read("threads", threads);
-    section.read("online_window", online_window);
     if (threads == 0) section.fail("threads = 0: must be >= 1");
     // Validate now, so that a bad value is reported with where it came from.
     validateIn(section, [&] { Params::validate(); });
@@ -107,8 +106,6 @@ void CHeightIntervalMap::TInsertionOptions::saveToConfigFile(mrpt::config::CConf
     saveFields<Params>(*this, c, s);
     c.write(s, "threads", threads, -1, -1,
             "Threads for insertion and classification (same map for any count)");
-    c.write(s, "online_window", online_window, -1, -1,
-            "Keep the last scans for the free-space test of classify() after insertion");
 }
 
 CHeightIntervalMap::TMapDefinition::TMapDefinition() = default;

@@ -107,8 +107,15 @@ struct Params
      *  point occupied. A pillar's points of one scan are removed when, above the pillar's
      *  lowest return (free_space_clearance) and spanning free_space_min_extent in height, at
      *  least free_space_fraction of them were not there at other times: something that
-     *  walked through. Needs the scans' range images (ScanWindow); see doc/algorithm.md. */
+     *  walked through. Needs the scans' range images (FreeSpaceTest); see doc/algorithm.md. */
     std::size_t free_space_window = 0;
+    /** How scans are classified, which the free-space test's scans follow (FreeSpaceTest):
+     *  online (SLAM), each scan right after its insertion, with the map and the scans of the
+     *  past only; offline (false), once every scan is inserted, each with the scans on both
+     *  sides of it. The offline defaults (kitti.ini: p_empty_init 0.42, a height first seen
+     *  needs a second sighting) remove most of a scan classified before the scans after it
+     *  were inserted. */
+    bool online = true;
     /** Points farther than this from their sensor are not tested, metres. A person (1.7 m)
      *  still spans 3 rings of a 64-beam sensor (0.4 degrees apart) at 80 m: farther, the
      *  object test (3 entries spanning free_space_min_extent) has too little to go on. */
@@ -144,12 +151,12 @@ struct Params
     std::size_t max_intervals_per_pillar = 16;
 
     /** The fields, for loops over them (see FieldTable.h). */
-    [[nodiscard]] static const std::array<Field<Params>, 26>& fields();
+    [[nodiscard]] static const std::array<Field<Params>, 27>& fields();
 
     /** The paper's method as written: the additions above (HHP, the unseen-height prior,
      *  range-adaptive intervals, the sensor model, misses that need a beam; see-through misses
-     *  are off by default)
-     *  off. */
+     *  and the free-space test are off by default) off, offline (as the paper cleans a
+     *  sequence). */
     [[nodiscard]] static Params paper();
 
     /** Throws std::invalid_argument naming the first invalid field and its value. */
@@ -163,10 +170,10 @@ struct Params
     friend bool operator!=(const Params& a, const Params& b) { return !(a == b); }
 };
 
-inline const std::array<Field<Params>, 26>& Params::fields()
+inline const std::array<Field<Params>, 27>& Params::fields()
 {
     using P = Params;
-    static const std::array<Field<P>, 26> table{{
+    static const std::array<Field<P>, 27> table{{
         {"merge_gap", &P::merge_gap, Bounds::atLeast(0), 0,
          "Max gap between heights of one interval [m]"},
         {"interval_padding", &P::interval_padding, Bounds::atLeast(0), 0,
@@ -191,6 +198,9 @@ inline const std::array<Field<Params>, 26>& Params::fields()
         {"free_space_window", &P::free_space_window, Bounds::closed(0, 50), 2,
          "Free-space test: scans on each side that may show a point was not there, 0 = off "
          "(not in the paper)"},
+        {"online", &P::online, Bounds::any(), 4,
+         "Classified online (right after insertion, the past only) or offline (after every "
+         "scan, both sides)"},
         {"free_space_range", &P::free_space_range, Bounds::above(0), 2,
          "Free-space test: points within this range are tested [m]"},
         {"free_space_margin", &P::free_space_margin, Bounds::atLeast(0), 2,

@@ -17,11 +17,11 @@
 #include <utility>
 #include <vector>
 
+#include "hif/FreeSpaceTest.h"
 #include "hif/GridGeometry.h"
 #include "hif/Params.h"
 #include "hif/Pillar.h"
 #include "hif/PillarIndex.h"
-#include "hif/ScanWindow.h"
 #include "hif/SensorModel.h"
 
 namespace hif
@@ -65,6 +65,8 @@ struct ClassifyStats
     std::size_t near_points = 0;     ///< nearer the sensor than Params::min_range: dynamic
     /** Points of the map's static intervals that the free-space test showed gone. */
     std::size_t seen_through_points = 0;
+    /** Scans of the free-space test that judged this one (0: the map's verdict alone). */
+    std::size_t free_space_scans = 0;
 };
 
 namespace detail
@@ -115,20 +117,13 @@ public:
     /** Classifies every point (sensor frame, placed by `sensor_to_world`, computed exactly as
      *  insertScan() does): is_dynamic[i] = 1 unless point i is static (isStatic() at its world
      *  position). Non-finite points are dynamic; finite points beyond the index range lie in
-     *  unknown space. `is_dynamic` is resized to points.size. */
-    ClassifyStats classify(
-        const PointsView& points, std::vector<uint8_t>& is_dynamic,
-        const Eigen::Isometry3d& sensor_to_world = Eigen::Isometry3d::Identity()) const;
-
-    /** classify(), then the free-space test when Params::free_space_window > 0: of the points
-     *  it found static, those of a pillar that other scans of `window` showed gone are dynamic
-     *  too (see Params::free_space_window). `self` is the window id of the scan classified, if
-     *  the window holds it (offline: the scans around it): it is no evidence about itself, and
-     *  only scans within free_space_window of it count. Without `self`, the scan is taken to
-     *  be newer than the whole window (online), and every scan of it counts. */
+     *  unknown space. `is_dynamic` is resized to points.size. With `free_space` and
+     *  Params::free_space_window > 0, the free-space test follows: of the points found static,
+     *  those of a pillar that the test's scans showed gone are dynamic too (see FreeSpaceTest
+     *  for which scans judge). */
     ClassifyStats classify(const PointsView& points, std::vector<uint8_t>& is_dynamic,
-                           const Eigen::Isometry3d& sensor_to_world, const ScanWindow& window,
-                           std::optional<std::size_t> self) const;
+                           const Eigen::Isometry3d& sensor_to_world = Eigen::Isometry3d::Identity(),
+                           const FreeSpaceTest* free_space = nullptr) const;
     /** @} */
 
     /** @name Point queries (world frame)
@@ -215,9 +210,6 @@ private:
     RangeImageLayout layout_ = RangeImageLayout::forSensor(std::nullopt);
     std::size_t scans_since_check_ = 0;
 
-    ClassifyStats classifyImpl(const PointsView& points, std::vector<uint8_t>& is_dynamic,
-                               const Eigen::Isometry3d& sensor_to_world, const ScanWindow* window,
-                               std::optional<std::size_t> self) const;
     /** Log-odds of P(static) at a world point (logit(p_empty_init) where nothing is known). */
     [[nodiscard]] double logOddsAt(double x, double y, double z) const;
 };

@@ -11,13 +11,13 @@
 #include <mrpt/math/TPoint3D.h>
 #include <mrpt/obs/obs_frwds.h>
 #include <mrpt/poses/CPose3D.h>
+#include <mrpt/system/COutputLogger.h>
 
 #include <cstdint>
 #include <optional>
 #include <vector>
 
 #include "hif/PillarGrid.h"
-#include "hif/ScanWindow.h"
 
 namespace hif
 {
@@ -40,9 +40,10 @@ namespace hif
  *  paper's "occupancy probability" (MRPT's occupancy grids store freeness instead).
  *
  *  Observation likelihood: the sum over the points of log P(static) at the point.
- *  The algorithm lives in hif::PillarGrid (no MRPT types); this class adapts it.
+ *  The algorithm lives in hif::PillarGrid (no MRPT types); this class adapts it. Warnings
+ *  (an offline map classifying scans as they come) go to its COutputLogger.
  */
-class CHeightIntervalMap : public mrpt::maps::CMetricMap
+class CHeightIntervalMap : public mrpt::maps::CMetricMap, public mrpt::system::COutputLogger
 {
     DEFINE_SERIALIZABLE(CHeightIntervalMap, hif)
 
@@ -68,29 +69,21 @@ public:
     /** Classifies the points of an observation taken at `robotPose`, placed in the world
      *  exactly as insertObservation() places them (robotPose (+) sensor pose): isDynamic[i] =
      *  1 unless point i is static, in the observation's point order. With the free-space test
-     *  on (free_space_window > 0), the map's own window of the last scans inserted is its
-     *  evidence (online use: the observation just inserted, or a newer one). Throws
-     *  std::invalid_argument for an observation type the map cannot insert. */
+     *  on (free_space_window > 0), the map's freeSpaceTest() judges it too: online (the
+     *  `online` option), the scans inserted before it; offline, the scans on both sides of it
+     *  that addToFreeSpaceTest() was given (see FreeSpaceTest). Throws std::invalid_argument
+     *  for an observation type the map cannot insert. */
     ClassifyStats classify(const mrpt::obs::CObservation& obs,
                            const mrpt::poses::CPose3D& robotPose,
                            std::vector<uint8_t>& isDynamic) const;
-    /** classify(), with the free-space test against `window` instead of the map's own:
-     *  offline, the scans on both sides of the one classified, whose window id is `self`
-     *  (see PillarGrid::classify()). */
-    ClassifyStats classify(const mrpt::obs::CObservation& obs,
-                           const mrpt::poses::CPose3D& robotPose, std::vector<uint8_t>& isDynamic,
-                           const ScanWindow& window, std::optional<std::size_t> self) const;
-    /** Adds an observation taken at `robotPose` to `window` as scan `id`, its range image laid
-     *  out for the map's sensor model. Returns false for an observation type the map cannot
-     *  insert. */
-    bool addToWindow(ScanWindow& window, std::size_t id, const mrpt::obs::CObservation& obs,
-                     const mrpt::poses::CPose3D& robotPose) const;
-    /** addToWindow() in two halves: the window's entry for the observation, built (on any
-     *  thread), to be added with ScanWindow::add(). Empty for an observation type the map cannot
-     *  insert. */
-    [[nodiscard]] std::optional<ScanWindow::Scan> makeWindowScan(
-        std::size_t id, const mrpt::obs::CObservation& obs,
-        const mrpt::poses::CPose3D& robotPose) const;
+    /** Offline (the `online` option false), the second pass: once every scan is inserted, give
+     *  the free-space test the scans again in their order, and classify scan k once scan k +
+     *  free_space_window is given (or the last one is). Online, insertion gives it each scan,
+     *  and this is not needed. Returns false for an observation type the map cannot insert. */
+    bool addToFreeSpaceTest(const mrpt::obs::CObservation& obs,
+                            const mrpt::poses::CPose3D& robotPose);
+    /** The scans that judge a classified one (see FreeSpaceTest); serialized with the map. */
+    [[nodiscard]] const FreeSpaceTest& freeSpaceTest() const { return free_space_; }
 
     [[nodiscard]] std::size_t pillarCount() const { return grid_.pillarCount(); }
     [[nodiscard]] std::size_t intervalCount() const { return grid_.intervalCount(); }
@@ -134,11 +127,6 @@ public:
          *  property of the machine, not of the map: read from and written to .ini files but
          *  not serialized with the map (Default: 1) */
         uint64_t threads = 1;
-        /** With the free-space test on, keep the range images of the last free_space_window
-         *  scans inserted, for classify() right after an insertion (online use). An offline
-         *  caller that keeps its own ScanWindow (hif-clean) turns it off and saves their cost.
-         *  Like `threads`, not serialized (Default: true) */
-        bool online_window = true;
 
         /** Loads every field; throws std::invalid_argument if the result is invalid, naming
          *  the section and the field. */
@@ -191,12 +179,13 @@ public:
 private:
     PillarGrid grid_;
     InsertStats last_insert_;
-    /** Online free-space test: the last free_space_window scans inserted, and the last one
-     *  (not serialized; empty after loading or clear()). */
-    ScanWindow window_;
-    std::size_t scans_inserted_ = 0;
-    const mrpt::obs::CObservation* last_obs_ = nullptr;  ///< compared, never dereferenced
-    mrpt::Clock::time_point last_stamp_;
+    /** The free-space test's scans: online, the last ones inserted; offline, those given by
+     *  addToFreeSpaceTest(). */
+    FreeSpaceTest free_space_;
+    /** An offline map classified a scan: what it warns of, once each (see classify()). */
+    mutable bool classified_ = false;
+    mutable bool warned_no_neighbours_ = false;
+    bool warned_inserted_after_ = false;
 
     void internal_clear() override;
     bool internal_insertObservation(

@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   FreeSpaceTest.h
+ * @brief  The free-space test (Params::free_space_window) as one object: the scans that may
+ *         show that a scan's points were not there, and which of them judge it.
+ */
+#pragma once
+
+#include <Eigen/Geometry>
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <vector>
+
+#include "hif/SensorModel.h"
+
+namespace hif
+{
+struct PointsView;
+struct Params;
+
+/** The scans of the free-space test, in the order they were taken, each kept as its pose and
+ *  its range image (the nearest return in each cell of directions around its sensor, laid out
+ *  for the map's sensor model, in centimetres; about 1 MB for a 64-beam LiDAR).
+ *
+ *  PillarGrid::classify() with a test judges a scan by the scans the test holds, but itself:
+ *  when the test holds the scan classified (the same points at the same pose), by those within
+ *  free_space_window scans of it on either side; otherwise by all of them (a scan newer than
+ *  every one held).
+ *
+ *  Online (Params::online: SLAM, each scan judged with the past only), add each scan once it
+ *  is inserted and classify it right away: the test keeps it and the free_space_window scans
+ *  before it. Offline (all scans inserted before any is classified), add the scans again in
+ *  their order and classify scan k once scan k + free_space_window is added (or the last one
+ *  is): the test keeps 2 free_space_window + 1. capacityFor() gives those. */
+class FreeSpaceTest
+{
+public:
+    /** "No return" in an image. */
+    static constexpr uint16_t kNoReturn = 0xFFFF;
+
+    /** One scan of the test. */
+    struct Scan
+    {
+        /** fingerprint() of its points and pose: which scan it is. */
+        uint64_t fingerprint = 0;
+        Eigen::Isometry3d sensor_to_world = Eigen::Isometry3d::Identity();
+        /** How `image` is laid out (from the map's sensor model). */
+        RangeImageLayout layout;
+        /** layout.cols x layout.rows, row-major, centimetres (up to 655.34 m), kNoReturn where
+         *  no return. */
+        std::vector<uint16_t> image;
+    };
+
+    /** A test that keeps the newest `capacity` scans added (0: none; the test is off). */
+    explicit FreeSpaceTest(std::size_t capacity = 0) : capacity_(capacity) {}
+
+    /** The capacity for `params`: 0 without the test (free_space_window 0); online, the scan
+     *  classified and the free_space_window before it; offline, free_space_window on each
+     *  side of it. */
+    [[nodiscard]] static std::size_t capacityFor(const Params& params);
+    [[nodiscard]] std::size_t capacity() const { return capacity_; }
+    /** Changes the capacity, dropping the oldest scans beyond it. */
+    void setCapacity(std::size_t capacity);
+
+    /** Adds the scan taken after every one added before: its points (sensor frame), placed in
+     *  the world by `sensor_to_world`, and its range image laid out as `layout`. The oldest
+     *  scan beyond the capacity is dropped. */
+    void add(const PointsView& points, const Eigen::Isometry3d& sensor_to_world,
+             const RangeImageLayout& layout);
+    /** Adds a scan as it was kept (scans() of another test: deserialization). Throws
+     *  std::invalid_argument if its image does not have its layout's size. */
+    void add(Scan scan);
+
+    /** Position in scans() of the scan with these points at this pose, if the test holds it. */
+    [[nodiscard]] std::optional<std::size_t> find(const PointsView& points,
+                                                  const Eigen::Isometry3d& sensor_to_world) const;
+    /** Identifies a scan: a 64-bit digest of its points' coordinates (their bits) and of its
+     *  pose, the same on every run and machine. */
+    [[nodiscard]] static uint64_t fingerprint(const PointsView& points,
+                                              const Eigen::Isometry3d& sensor_to_world);
+
+    /** Oldest first. */
+    [[nodiscard]] const std::deque<Scan>& scans() const { return scans_; }
+    [[nodiscard]] bool empty() const { return scans_.empty(); }
+    [[nodiscard]] std::size_t size() const { return scans_.size(); }
+    void clear() { scans_.clear(); }
+    /** Heap memory of the images kept (and of one spare for the next scan). */
+    [[nodiscard]] std::size_t memoryBytes() const;
+
+    /** Same capacity and scans. */
+    friend bool operator==(const FreeSpaceTest& a, const FreeSpaceTest& b);
+
+private:
+    void dropBeyondCapacity();
+
+    std::size_t capacity_ = 0;
+    std::deque<Scan> scans_;
+    std::vector<uint16_t> spare_;  ///< the image of the last scan dropped, reused
+};
+
+}  // namespace hif

@@ -1,0 +1,132 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   FreeSpaceTest.cpp
+ * @brief  The scans kept for the free-space test.
+ */
+#include "hif/FreeSpaceTest.h"
+
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "RangeImage.h"
+#include "hif/Params.h"
+#include "hif/PillarGrid.h"
+
+namespace hif
+{
+static_assert(FreeSpaceTest::kNoReturn == detail::kNoReturnCm);
+
+std::size_t FreeSpaceTest::capacityFor(const Params& p)
+{
+    const std::size_t w = p.free_space_window;
+    if (w == 0) return 0;
+    return p.online ? w + 1 : 2 * w + 1;
+}
+
+void FreeSpaceTest::setCapacity(std::size_t capacity)
+{
+    capacity_ = capacity;
+    dropBeyondCapacity();
+}
+
+void FreeSpaceTest::dropBeyondCapacity()
+{
+    while (scans_.size() > capacity_)
+    {
+        spare_ = std::move(scans_.front().image);
+        scans_.pop_front();
+    }
+}
+
+void FreeSpaceTest::add(const PointsView& points, const Eigen::Isometry3d& sensor_to_world,
+                        const RangeImageLayout& layout)
+{
+    if (capacity_ == 0) return;
+    Scan s;
+    s.fingerprint = fingerprint(points, sensor_to_world);
+    s.sensor_to_world = sensor_to_world;
+    s.layout = layout;
+    s.image = std::move(spare_);
+    spare_ = {};
+    detail::buildRangeImageCm(layout, points, s.image);
+    scans_.push_back(std::move(s));
+    dropBeyondCapacity();
+}
+
+void FreeSpaceTest::add(Scan scan)
+{
+    if (scan.image.size() != scan.layout.cells())
+        throw std::invalid_argument("hif::FreeSpaceTest::add: an image of " +
+                                    std::to_string(scan.image.size()) + " cells for a layout of " +
+                                    std::to_string(scan.layout.cells()));
+    if (capacity_ == 0) return;
+    scans_.push_back(std::move(scan));
+    dropBeyondCapacity();
+}
+
+namespace
+{
+/** splitmix64's finalizer: every input bit reaches every output bit. */
+uint64_t mix(uint64_t x)
+{
+    x ^= x >> 30;
+    x *= 0xbf58476d1ce4e5b9ULL;
+    x ^= x >> 27;
+    x *= 0x94d049bb133111ebULL;
+    return x ^ (x >> 31);
+}
+
+template <typename T>
+uint64_t bitsOf(T v)
+{
+    static_assert(sizeof(T) <= sizeof(uint64_t));
+    uint64_t b = 0;
+    std::memcpy(&b, &v, sizeof v);
+    return b;
+}
+}  // namespace
+
+uint64_t FreeSpaceTest::fingerprint(const PointsView& pts, const Eigen::Isometry3d& T)
+{
+    uint64_t h = mix(pts.size);
+    for (std::size_t i = 0; i < pts.size; ++i)
+        h = mix(h ^ (bitsOf(pts.x[i]) | bitsOf(pts.y[i]) << 32)) ^ bitsOf(pts.z[i]);
+    const Eigen::Matrix4d& m = T.matrix();
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c) h = mix(h ^ bitsOf(m(r, c)));
+    return h;
+}
+
+std::optional<std::size_t> FreeSpaceTest::find(const PointsView& points,
+                                               const Eigen::Isometry3d& sensor_to_world) const
+{
+    if (scans_.empty()) return std::nullopt;
+    const uint64_t f = fingerprint(points, sensor_to_world);
+    // Newest first: online, the scan classified is the one just added.
+    for (std::size_t k = scans_.size(); k-- > 0;)
+        if (scans_[k].fingerprint == f) return k;
+    return std::nullopt;
+}
+
+std::size_t FreeSpaceTest::memoryBytes() const
+{
+    std::size_t bytes = spare_.capacity() * sizeof(uint16_t);
+    for (const Scan& s : scans_) bytes += sizeof(Scan) + s.image.capacity() * sizeof(uint16_t);
+    return bytes;
+}
+
+bool operator==(const FreeSpaceTest& a, const FreeSpaceTest& b)
+{
+    if (a.capacity_ != b.capacity_ || a.scans_.size() != b.scans_.size()) return false;
+    for (std::size_t k = 0; k < a.scans_.size(); ++k)
+    {
+        const FreeSpaceTest::Scan &x = a.scans_[k], &y = b.scans_[k];
+        if (x.fingerprint != y.fingerprint || x.sensor_to_world.matrix() != y.sensor_to_world.matrix() ||
+            !(x.layout == y.layout) || x.image != y.image)
+            return false;
+    }
+    return true;
+}
+
+}  // namespace hif
