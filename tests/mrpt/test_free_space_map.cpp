@@ -94,7 +94,8 @@ std::vector<std::vector<uint8_t>> offlineClasses(Maps& m, const Clip& clip)
         if (i >= w && i - w < clip.size())
         {
             const std::size_t k = i - w;
-            const hif::ClassifyStats st = m.map->classify(*clip.scans[k], clip.poses[k], classes[k]);
+            const hif::ClassifyStats st =
+                m.map->classify(*clip.scans[k], clip.poses[k], classes[k]);
             // Judged by the scans within w of it, itself left out.
             EXPECT_EQ(st.free_space_scans, std::min(clip.size() - 1, k + w) - (k > w ? k - w : 0));
         }

@@ -122,8 +122,9 @@ bool operator==(const FreeSpaceTest& a, const FreeSpaceTest& b)
     for (std::size_t k = 0; k < a.scans_.size(); ++k)
     {
         const FreeSpaceTest::Scan &x = a.scans_[k], &y = b.scans_[k];
-        if (x.fingerprint != y.fingerprint || x.sensor_to_world.matrix() != y.sensor_to_world.matrix() ||
-            !(x.layout == y.layout) || x.image != y.image)
+        if (x.fingerprint != y.fingerprint ||
+            x.sensor_to_world.matrix() != y.sensor_to_world.matrix() || !(x.layout == y.layout) ||
+            x.image != y.image)
             return false;
     }
     return true;

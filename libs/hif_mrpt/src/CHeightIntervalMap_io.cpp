@@ -94,7 +94,8 @@ FreeSpaceTest::Scan readTestScan(mrpt::serialization::CArchive& in)
         std::size_t skip = 0;
         for (int shift = 0;; shift += 7)
         {
-            if (k >= n || shift > 28) THROW_EXCEPTION("Corrupt hif map: a free-space image's cells");
+            if (k >= n || shift > 28)
+                THROW_EXCEPTION("Corrupt hif map: a free-space image's cells");
             const uint8_t b = bytes[k++];
             skip |= std::size_t(b & 0x7F) << shift;
             if (!(b & 0x80)) break;
