@@ -12,9 +12,13 @@
 #include <mrpt/io/CMemoryStream.h>
 #include <mrpt/maps/CMultiMetricMap.h>
 #include <mrpt/maps/CPointsMapXYZI.h>
+#include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -207,4 +211,64 @@ TEST(FreeSpaceMap, ASavedMapClassifiesAsTheSavedOneDid)
         EXPECT_GT(a.seen_through_points, 0u);
         EXPECT_EQ(a.seen_through_points, b.seen_through_points);
     }
+}
+
+// The images in a saved map are read only when laid out as the map's own (which bounds what a
+// corrupt file can make the reader allocate), and a file with more scans than the map's
+// options keep, or an image's cells past its end, is refused with what is wrong.
+TEST(FreeSpaceMap, ACorruptImageInASavedMapIsRefused)
+{
+    hif::Params prm;
+    prm.free_space_window = 2;
+    prm.sensor_from_scans = false;  // the default layout: 1800 columns
+    CHeightIntervalMap map(hif::GridGeometry(), prm);
+    auto points = mrpt::maps::CSimplePointsMap::Create();
+    for (float a = 0; a < 6.28f; a += 0.01f)
+        points->insertPoint(10 * std::cos(a), 10 * std::sin(a), -1.5f);
+    mrpt::obs::CObservationPointCloud obs;
+    obs.pointcloud = points;
+    map.insertObservation(obs, mrpt::poses::CPose3D());
+    ASSERT_EQ(map.freeSpaceTest().size(), 1u);
+    mrpt::io::CMemoryStream buf;
+    auto out = mrpt::serialization::archiveFrom(buf);
+    out << map;
+    const auto* data = static_cast<const uint8_t*>(buf.getRawBufferData());
+    const std::vector<uint8_t> bytes(data, data + buf.getTotalBytesCount());
+    const hif::RangeImageLayout& l = map.grid().imageLayout();
+    const int32_t layout[2] = {l.cols, l.rows};
+    const auto at =
+        std::search(bytes.begin(), bytes.end(), reinterpret_cast<const uint8_t*>(layout),
+                    reinterpret_cast<const uint8_t*>(layout) + 8);
+    ASSERT_NE(at, bytes.end());
+    auto load = [](std::vector<uint8_t> b)
+    {
+        mrpt::io::CMemoryStream in_buf;
+        in_buf.Write(b.data(), b.size());
+        in_buf.Seek(0);
+        auto in = mrpt::serialization::archiveFrom(in_buf);
+        CHeightIntervalMap loaded;
+        try
+        {
+            in >> loaded;
+        }
+        catch (const std::exception& e)
+        {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    EXPECT_EQ(load(bytes), "");
+    std::vector<uint8_t> bad = bytes;
+    const int32_t huge = 7200 * 3600;
+    std::memcpy(&bad[std::size_t(at - bytes.begin())], &huge, 4);
+    EXPECT_NE(load(bad).find("not laid out for the map's sensor"), std::string::npos) << load(bad);
+    // The scan count is the uint32 before the scan's fingerprint (8 bytes) and pose (96).
+    bad = bytes;
+    const std::size_t count_at = std::size_t(at - bytes.begin()) - 96 - 8 - 4;
+    uint32_t count = 0;
+    std::memcpy(&count, &bad[count_at], 4);
+    ASSERT_EQ(count, 1u);
+    count = 1000;
+    std::memcpy(&bad[count_at], &count, 4);
+    EXPECT_NE(load(bad).find("more than its options keep"), std::string::npos) << load(bad);
 }

@@ -27,11 +27,10 @@ namespace
 constexpr uint8_t kSerializationVersion = 4;
 /** More beams than any LiDAR has: a larger count in a file is corruption. */
 constexpr uint32_t kMaxBeams = 4096;
-/** Bounds on a free-space test in a file (the window is at most 50 scans on each side; an
- *  image of 0.05-degree columns and rows over the whole sphere is 26 M cells). */
-constexpr uint32_t kMaxTestScans = 101;
-constexpr int32_t kMaxImageCols = 7200;
-constexpr int32_t kMaxImageRows = 3600;
+/** A free-space image in a file has the layout of the map's sensor model, and at most this
+ *  many cells (a 128-beam LiDAR's: 7200 columns of 0.05 degrees by 260 rows): more is a corrupt
+ *  file, which must not make the reader allocate what it says. */
+constexpr std::size_t kMaxImageCells = std::size_t{8} << 20;
 
 /** A free-space test's scan. Its image is mostly "no return": it is written as the cells that
  *  hold one, each as the number of cells skipped since the last (a varint) and its value (two
@@ -64,7 +63,8 @@ void writeTestScan(mrpt::serialization::CArchive& out, const FreeSpaceTest::Scan
     out.WriteBuffer(bytes.data(), bytes.size());
 }
 
-FreeSpaceTest::Scan readTestScan(mrpt::serialization::CArchive& in)
+FreeSpaceTest::Scan readTestScan(mrpt::serialization::CArchive& in,
+                                 const RangeImageLayout& expected)
 {
     FreeSpaceTest::Scan s;
     in >> s.fingerprint;
@@ -74,10 +74,13 @@ FreeSpaceTest::Scan readTestScan(mrpt::serialization::CArchive& in)
     s.sensor_to_world.matrix() = m;
     int32_t cols = 0, rows = 0;
     in >> cols >> rows >> s.layout.tan_min >> s.layout.tan_max >> s.layout.tan_res;
-    if (cols < 1 || cols > kMaxImageCols || rows < 1 || rows > kMaxImageRows)
-        THROW_EXCEPTION_FMT("Corrupt hif map: a free-space image of %d x %d cells", cols, rows);
     s.layout.cols = cols;
     s.layout.rows = rows;
+    if (!(s.layout == expected) || expected.cells() > kMaxImageCells)
+        THROW_EXCEPTION_FMT(
+            "Corrupt hif map: a free-space image of %d x %d cells, not laid out "
+            "for the map's sensor (%d x %d)",
+            cols, rows, expected.cols, expected.rows);
     s.image.assign(s.layout.cells(), FreeSpaceTest::kNoReturn);
     uint32_t n = 0;
     in >> n;
@@ -248,9 +251,12 @@ void CHeightIntervalMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_
     {
         uint32_t scans = 0;
         in >> scans;
-        if (scans > kMaxTestScans)
-            THROW_EXCEPTION_FMT("Corrupt hif map: a free-space test of %u scans", scans);
-        for (uint32_t k = 0; k < scans; ++k) free_space_.add(readTestScan(in));
+        if (scans > free_space_.capacity())
+            THROW_EXCEPTION_FMT(
+                "Corrupt hif map: a free-space test of %u scans, more than its "
+                "options keep (%zu)",
+                scans, free_space_.capacity());
+        for (uint32_t k = 0; k < scans; ++k) free_space_.add(readTestScan(in, grid_.imageLayout()));
     }
     last_insert_ = {};
     classified_ = warned_no_neighbours_ = warned_inserted_after_ = false;
