@@ -118,6 +118,11 @@ struct Parallax
 /** What a pillar's points must be to be tested, in the scan's height cells and metres. */
 struct ObjectTest
 {
+    /** Entries an object needs: two returns free_space_min_extent apart in height stand above
+     *  the ground (texture and kerbs are flat). Not three: a 16-beam LiDAR puts two beams on a
+     *  person from about 15 m (2 degrees apart), a 32-beam one from about 35 m. */
+    static constexpr std::size_t kMinEntries = 2;
+
     int32_t clearance;  ///< cells above the pillar's lowest return
     double range2;      ///< squared range from the sensor
     double min_extent;  ///< metres spanned
@@ -147,12 +152,13 @@ struct ObjectTest
 
     [[nodiscard]] bool isObject(const Extent& x) const
     {
-        return x.count >= 3 && (x.top - x.bottom + 1) * res >= min_extent;
+        return x.count >= kMinEntries && (x.top - x.bottom + 1) * res >= min_extent;
     }
 
     /** The entries of pillar `p` of `scan` to test (into `tested`): clear of the pillar's
      *  lowest return, within range, not dynamic already; and whether they, or those clear of
-     *  the ground and dynamic already, make an object: at least 3 spanning min_extent. */
+     *  the ground and dynamic already, make an object: at least kMinEntries spanning
+     *  min_extent. */
     Found entries(const ScanBuckets& scan, std::size_t p, const PointsView& pts,
                   const std::vector<uint8_t>& is_dynamic, std::vector<uint32_t>& tested) const
     {

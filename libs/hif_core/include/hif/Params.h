@@ -118,7 +118,7 @@ struct Params
     bool online = true;
     /** Points farther than this from their sensor are not tested, metres. A person (1.7 m)
      *  still spans 3 rings of a 64-beam sensor (0.4 degrees apart) at 80 m: farther, the
-     *  object test (3 entries spanning free_space_min_extent) has too little to go on. */
+     *  object test (2 entries spanning free_space_min_extent) has too little to go on. */
     double free_space_range = 80.0;
     /** A return counts as near a point (it vetoes, or marks the point occupied) within this
      *  many metres plus free_space_margin_per_m times the point's range; beyond, as clearly
