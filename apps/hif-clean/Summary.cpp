@@ -75,6 +75,8 @@ void writeSummary(const std::string& file, const SummaryInfo& info,
         sj["azimuth_coverage_deg"] = m->azimuth_coverage_deg;
         if (info.sensor.estimated_from_scan)
             sj["estimated_from_scan"] = *info.sensor.estimated_from_scan;
+        else
+            sj["given"] = true;  // in the config (or the map read back)
         sj["scans_checked"] = info.sensor.checks;
         sj["contradictions"] = info.sensor.contradictions;
         j["sensor"] = sj;

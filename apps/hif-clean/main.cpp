@@ -250,6 +250,8 @@ void printHeader(const Run& run)
                              : "offline (all scans inserted, then every point classified)")
               << "\n"
               << kTag << " output : " << run.out_dir << "\n";
+    if (const auto& m = run.hif_map->grid().sensorModel())
+        std::cout << kTag << " sensor : " << m->describe() << " (given in the config)\n";
     for (const std::string& w : run.source->warnings())
         std::cout << kTag << " warning: " << w << "\n";
 }
@@ -301,9 +303,12 @@ void reportSensor(Run& run, std::size_t k)
     if (st.sensor_contradiction.empty()) return;
     constexpr std::size_t kShown = 3;
     if (r.contradictions.size() < kShown)
-        std::cout << kTag << " warning: scan " << k << " does not look like the sensor of scan "
-                  << r.estimated_from_scan.value_or(0) << ": " << st.sensor_contradiction
-                  << " (are the scans from one LiDAR?)\n";
+        std::cout << kTag << " warning: scan " << k << " does not look like the sensor "
+                  << (r.estimated_from_scan
+                          ? "of scan " + std::to_string(*r.estimated_from_scan) +
+                                " (are the scans from one LiDAR?)"
+                          : std::string("given in the config (is it this LiDAR's?)"))
+                  << ": " << st.sensor_contradiction << "\n";
     r.contradictions.push_back("scan " + std::to_string(k) + ": " + st.sensor_contradiction);
 }
 

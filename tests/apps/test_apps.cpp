@@ -1000,3 +1000,80 @@ TEST(HifSyntheticKitti, EachSensorScansWithItsOwnBeams)
         }
     }
 }
+
+// Every sensor of hif-synthetic-kitti, in the street (cars, sliding boxes) and walkers scenes,
+// cleaned end to end with the shipped defaults (the sensor model estimated from the scans):
+// floors a little under today's figures (scripts/sensors.sh, seed 1, 10 scans; doc/sensors.md).
+// And a model given in the config: used from the start, and a wrong one warned of.
+TEST(Sensors, EachSensorsClipIsCleanedWithTheDefaults)
+{
+    if (HIF_SANITIZED) GTEST_SKIP() << "removal floors: the plain suite (scripts/test.sh)";
+    const WorkDir work = workDir("sensor_clips_" + std::to_string(getpid()));
+    struct Floors
+    {
+        std::string sensor;
+        double street_sa, car_da, walkers_sa, person_da;
+    };
+    for (const Floors& f : std::vector<Floors>{{"hdl-64e", 99.0, 99.3, 99.6, 86.0},
+                                               {"hdl-32e", 98.4, 98.3, 99.5, 75.0},
+                                               {"vlp-16", 97.0, 95.0, 99.2, 61.0},
+                                               {"os1-128", 98.8, 99.3, 99.5, 87.0},
+                                               {"mid-70", 75.5, 64.0, 82.5, 80.0}})
+        for (const std::string scene : {"street", "walkers"})
+        {
+            SCOPED_TRACE(f.sensor + " " + scene);
+            const std::string seq = work.path() + "/" + f.sensor + "_" + scene;
+            auto r = runApp("hif-synthetic-kitti", "-o " + seq + " -n 10 --seed 1 --scene " +
+                                                       scene + " --sensor " + f.sensor);
+            ASSERT_EQ(r.code, 0) << r.output;
+            r = runApp("hif-clean", "-i " + seq + " -o " + seq + "/out -q --no-png");
+            ASSERT_EQ(r.code, 0) << r.output;
+            r = runApp("hif-eval", "--labels " + seq + "/labels --predictions " + seq +
+                                       "/out/predictions -q --json " + seq + "/scores.json");
+            ASSERT_EQ(r.code, 0) << r.output;
+            const json s = readJson(seq + "/scores.json");
+            const json& total = s["total"];
+            if (scene == "street")
+            {
+                EXPECT_GE(total["SA"].get<double>(), f.street_sa);
+                EXPECT_GE(s["per_moving_class"]["moving-car"]["DA"].get<double>(), f.car_da);
+            }
+            else
+            {
+                EXPECT_GE(total["SA"].get<double>(), f.walkers_sa);
+                EXPECT_GE(s["per_moving_class"]["moving-person"]["DA"].get<double>(), f.person_da);
+            }
+        }
+
+    // The VLP-16's beams given in the config: the map's model from the start (in summary.json,
+    // "given"); an HDL-64E's given instead, the scans contradict it, and hif-clean says so.
+    const std::string seq = work.path() + "/vlp-16_street";
+    std::stringstream text;
+    text << std::ifstream(HIF_SHARE_DIR "/config/kitti.ini").rdbuf();
+    std::string vlp16 = "sensor_beams_deg=", hdl64 = "sensor_beams_deg=";
+    for (int b = 0; b < 16; ++b) vlp16 += " " + std::to_string(-15 + 2 * b);
+    for (int b = 0; b < 64; ++b) hdl64 += " " + std::to_string(-24.8 + 26.8 * b / 63.0);
+    const std::string tail = "\nsensor_horizontal_resolution_deg=0.2\n";
+    std::ofstream(seq + "/vlp16.ini") << text.str() << vlp16 << tail;
+    std::ofstream(seq + "/hdl64.ini") << text.str() << hdl64 << tail;
+    auto r = runApp("hif-clean",
+                    "-i " + seq + " -o " + seq + "/given --no-png -c " + seq + "/vlp16.ini");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("sensor : 16 beams from -15.00 to 15.00 deg, 2.000 deg apart"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("(given in the config)"), std::string::npos);
+    EXPECT_EQ(r.output.find("does not look like"), std::string::npos) << r.output;
+    const json g = readJson(seq + "/given/summary.json")["sensor"];
+    EXPECT_TRUE(g["given"].get<bool>());
+    EXPECT_EQ(g["beams"].get<int>(), 16);
+    EXPECT_EQ(g["scans_checked"].get<int>(), 1);  // the first scan
+    r = runApp("hif-clean",
+               "-i " + seq + " -o " + seq + "/wrong --no-png -c " + seq + "/hdl64.ini");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("warning: scan 0 does not look like the sensor given in the config "
+                            "(is it this LiDAR's?): 64 beams expected, the scan has 16"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(readJson(seq + "/wrong/summary.json")["sensor"]["contradictions"].size(), 1u);
+}

@@ -400,3 +400,68 @@ TEST(CHeightIntervalMapIni, ShippedPaperConfigLoadsThePaperSettings)
     ASSERT_TRUE(map);
     EXPECT_EQ(map->params(), hif::Params::paper());
 }
+
+// The LiDAR given in the .ini instead of estimated (doc/sensors.md): a spinning one by its
+// beams, a non-repetitive one by its field of view; the map uses it from the start, it is
+// saved with the options, and a wrong or incomplete one is an error naming the key.
+TEST(CHeightIntervalMapIni, ASensorGivenInTheIniIsTheMapsModel)
+{
+    const std::string vlp16 = std::string(kIni) +
+                              "sensor_beams_deg=15, 13, 11, 9, 7, 5, 3, 1, -1, -3, -5, -7, -9, "
+                              "-11, -13, -15\nsensor_horizontal_resolution_deg=0.2\n";
+    mrpt::maps::CMultiMetricMap multi(initializersFrom(vlp16));
+    const auto map = multi.mapByClass<CHeightIntervalMap>();
+    ASSERT_TRUE(map);
+    const auto& m = map->grid().sensorModel();
+    ASSERT_TRUE(m);
+    EXPECT_EQ(m->beam_elevations_deg.size(), 16u);
+    EXPECT_EQ(m->beam_elevations_deg.front(), -15.0);  // sorted
+    EXPECT_DOUBLE_EQ(m->vertical_spacing_deg, 2.0);
+    EXPECT_EQ(m->azimuth_coverage_deg, 360.0);
+    // Its range images are laid out for it: a row per degree (half the spacing).
+    EXPECT_NEAR(map->grid().imageLayout().tan_res, M_PI / 180.0, 1e-12);
+
+    // Saved and read back with the options.
+    mrpt::config::CConfigFileMemory cfg;
+    map->insertionOptions.saveToConfigFile(cfg, "opts");
+    CHeightIntervalMap::TInsertionOptions back;
+    back.loadFromConfigFile(mrpt::config::CConfigFileMemory(cfg.getContent()), "opts");
+    ASSERT_TRUE(back.sensor);
+    EXPECT_TRUE(*back.sensor == *m);
+
+    // A Livox-style pattern: its field of view and spacing.
+    mrpt::maps::CMultiMetricMap livox(initializersFrom(
+        std::string(kIni) +
+        "sensor_fov_deg=-35 21\nsensor_spacing_deg=0.27\nsensor_azimuth_deg=70\n"));
+    const auto& l = livox.mapByClass<CHeightIntervalMap>()->grid().sensorModel();
+    ASSERT_TRUE(l);
+    EXPECT_FALSE(l->hasRings());
+    EXPECT_EQ(l->elevation_min_deg, -35.0);
+    EXPECT_EQ(l->azimuth_coverage_deg, 70.0);
+
+    // Mistakes, each named.
+    const std::string insert = "map_CHeightIntervalMap_00_insertOpts";
+    for (const auto& [keys, says] : std::vector<std::pair<std::string, std::string>>{
+             {"sensor_beams_deg=-15 -13\n", "sensor_horizontal_resolution_deg missing"},
+             {"sensor_beams_deg=-15 x 15\nsensor_horizontal_resolution_deg=0.2\n",
+              "'x' is not a number"},
+             {"sensor_beams_deg=3\nsensor_horizontal_resolution_deg=0.2\n", "1 beam elevations"},
+             {"sensor_beams_deg=-1 -1 2\nsensor_horizontal_resolution_deg=0.2\n",
+              "is not ascending"},
+             {"sensor_fov_deg=-30 20\nsensor_beams_deg=1 2\n", "give one"},
+             {"sensor_fov_deg=-30\nsensor_spacing_deg=0.3\n", "give the lowest and the highest"},
+             {"sensor_spacing_deg=0.3\n", "without sensor_beams_deg"},
+             {"sensor_fov_deg=-30 20\nsensor_spacing_deg=0\n", "vertical_spacing_deg 0"}})
+    {
+        try
+        {
+            initializersFrom(std::string(kIni) + keys);
+            ADD_FAILURE() << keys << " accepted";
+        }
+        catch (const std::exception& e)
+        {
+            EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find(insert), std::string::npos) << e.what();
+        }
+    }
+}

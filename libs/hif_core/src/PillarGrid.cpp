@@ -52,7 +52,7 @@ void PillarGrid::setSensorModel(std::optional<SensorModel> model)
     sensor_ = std::move(model);
     layout_ = RangeImageLayout::forSensor(sensor_);
     beam_tangents_ = sensor_ ? sensor_->beamTangents() : std::vector<double>{};
-    scans_since_check_ = 0;
+    scans_since_check_ = kSensorCheckInterval - 1;  // given: the next scan is checked
 }
 
 double PillarGrid::beamGapSlope(double tan_el) const
@@ -73,6 +73,7 @@ InsertStats PillarGrid::insertScan(const PointsView& pts, const Eigen::Isometry3
             if (auto m = SensorModel::estimate(pts))
             {
                 setSensorModel(std::move(m));
+                scans_since_check_ = 0;  // estimated from this scan: checked in 50
                 estimated = true;
             }
         }

@@ -211,6 +211,37 @@ std::optional<SensorModel> SensorModel::estimateAny(const PointsView& pts)
     return m;
 }
 
+SensorModel SensorModel::fromBeams(std::vector<double> el, double horizontal, double azimuth)
+{
+    if (el.size() < 2)
+        throw std::invalid_argument("hif::SensorModel: " + std::to_string(el.size()) +
+                                    " beam elevations given (at least 2)");
+    std::sort(el.begin(), el.end());
+    std::vector<double> gaps;
+    for (std::size_t k = 1; k < el.size(); ++k) gaps.push_back(el[k] - el[k - 1]);
+    SensorModel m;
+    m.elevation_min_deg = el.front();
+    m.elevation_max_deg = el.back();
+    m.vertical_spacing_deg = median(gaps);
+    m.horizontal_resolution_deg = horizontal;
+    m.azimuth_coverage_deg = azimuth;
+    m.beam_elevations_deg = std::move(el);
+    m.validate();  // two beams at one elevation are not ascending
+    return m;
+}
+
+SensorModel SensorModel::fromPattern(double el_min, double el_max, double spacing, double azimuth)
+{
+    SensorModel m;
+    m.elevation_min_deg = el_min;
+    m.elevation_max_deg = el_max;
+    m.vertical_spacing_deg = spacing;
+    m.horizontal_resolution_deg = spacing;
+    m.azimuth_coverage_deg = azimuth;
+    m.validate();
+    return m;
+}
+
 std::vector<double> SensorModel::beamTangents() const
 {
     std::vector<double> t;

@@ -42,6 +42,8 @@ void CHeightIntervalMap::applyOptions()
     free_space_.setCapacity(FreeSpaceTest::capacityFor(p));
     if (insertionOptions.threads != grid_.threads())
         grid_.setThreads(static_cast<std::size_t>(insertionOptions.threads));
+    if (insertionOptions.sensor && grid_.sensorModel() != insertionOptions.sensor)
+        grid_.setSensorModel(insertionOptions.sensor);  // given in the .ini
 }
 
 void CHeightIntervalMap::internal_clear()

@@ -8,6 +8,7 @@
 #include <mrpt/core/format.h>
 
 #include <ostream>
+#include <sstream>
 #include <stdexcept>
 
 #include "IniSection.h"
@@ -86,16 +87,82 @@ void validateIn(const IniSection& section, F&& validate)
 }
 }  // namespace
 
+namespace
+{
+/** The LiDAR given by the section's sensor_* keys, or none when it has none of them. */
+std::optional<SensorModel> readSensor(const IniSection& section)
+{
+    const bool beams = section.has("sensor_beams_deg"), fov = section.has("sensor_fov_deg");
+    if (!beams && !fov)
+    {
+        for (const char* k :
+             {"sensor_spacing_deg", "sensor_horizontal_resolution_deg", "sensor_azimuth_deg"})
+            if (section.has(k))
+                section.fail(std::string(k) +
+                             " without sensor_beams_deg (a spinning LiDAR) or sensor_fov_deg (a "
+                             "non-repetitive one)");
+        return std::nullopt;
+    }
+    if (beams && fov)
+        section.fail(
+            "sensor_beams_deg and sensor_fov_deg: give one (a spinning LiDAR's beams, or "
+            "a non-repetitive one's field of view)");
+    auto need = [&](const char* k)
+    {
+        if (!section.has(k))
+            section.fail(std::string(k) + " missing (needed with " +
+                         (beams ? "sensor_beams_deg)" : "sensor_fov_deg)"));
+    };
+    double azimuth = 360.0, spacing = 0.0, horizontal = 0.0;
+    section.read("sensor_azimuth_deg", azimuth);
+    try
+    {
+        if (beams)
+        {
+            need("sensor_horizontal_resolution_deg");
+            if (section.has("sensor_spacing_deg"))
+                section.fail(
+                    "sensor_spacing_deg with sensor_beams_deg: the spacing follows from "
+                    "the beams");
+            std::vector<double> el;
+            section.read("sensor_beams_deg", el);
+            section.read("sensor_horizontal_resolution_deg", horizontal);
+            return SensorModel::fromBeams(el, horizontal, azimuth);
+        }
+        need("sensor_spacing_deg");
+        if (section.has("sensor_horizontal_resolution_deg"))
+            section.fail(
+                "sensor_horizontal_resolution_deg with sensor_fov_deg: a non-repetitive "
+                "pattern has one spacing (sensor_spacing_deg)");
+        std::vector<double> v;
+        section.read("sensor_fov_deg", v);
+        if (v.size() != 2)
+            section.fail("sensor_fov_deg has " + std::to_string(v.size()) +
+                         " numbers: give the lowest and the highest elevation");
+        section.read("sensor_spacing_deg", spacing);
+        return SensorModel::fromPattern(v[0], v[1], spacing, azimuth);
+    }
+    catch (const std::invalid_argument& e)
+    {
+        if (std::string(e.what()).rfind("hif::SensorModel", 0) != 0) throw;  // already placed
+        section.fail(std::string("the sensor_* keys: ") + e.what());
+    }
+}
+}  // namespace
+
 void CHeightIntervalMap::TInsertionOptions::loadFromConfigFile(
     const mrpt::config::CConfigFileBase& c, const std::string& s)
 {
     const IniSection section(c, s);
     std::vector<std::string> known = keysOf<Params>();
-    known.emplace_back("threads");
+    known.insert(known.end(),
+                 {"threads", "sensor_beams_deg", "sensor_fov_deg", "sensor_spacing_deg",
+                  "sensor_horizontal_resolution_deg", "sensor_azimuth_deg"});
     section.requireKnownKeys(known);
     loadFields<Params>(*this, section);
     section.read("threads", threads);
     if (threads == 0) section.fail("threads = 0: must be >= 1");
+    sensor = readSensor(section);
     // Validate now, so that a bad value is reported with where it came from.
     validateIn(section, [&] { Params::validate(); });
 }
@@ -106,6 +173,30 @@ void CHeightIntervalMap::TInsertionOptions::saveToConfigFile(mrpt::config::CConf
     saveFields<Params>(*this, c, s);
     c.write(s, "threads", threads, -1, -1,
             "Threads for insertion and classification (same map for any count)");
+    if (!sensor) return;
+    auto list = [](const std::vector<double>& v)
+    {
+        std::ostringstream os;
+        os.precision(17);
+        for (std::size_t k = 0; k < v.size(); ++k) os << (k ? " " : "") << v[k];
+        return os.str();
+    };
+    if (sensor->hasRings())
+    {
+        c.write(s, "sensor_beams_deg", list(sensor->beam_elevations_deg), -1, -1,
+                "The LiDAR's beams, degrees of elevation");
+        c.write(s, "sensor_horizontal_resolution_deg", sensor->horizontal_resolution_deg, -1, -1,
+                "Azimuth step of a beam, degrees");
+    }
+    else
+    {
+        c.write(s, "sensor_fov_deg", list({sensor->elevation_min_deg, sensor->elevation_max_deg}),
+                -1, -1, "Lowest and highest elevation of a non-repetitive LiDAR, degrees");
+        c.write(s, "sensor_spacing_deg", sensor->vertical_spacing_deg, -1, -1,
+                "Mean angle between its points in one scan, degrees");
+    }
+    c.write(s, "sensor_azimuth_deg", sensor->azimuth_coverage_deg, -1, -1,
+            "Azimuth the LiDAR covers, degrees");
 }
 
 CHeightIntervalMap::TMapDefinition::TMapDefinition() = default;

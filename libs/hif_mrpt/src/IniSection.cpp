@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <optional>
@@ -168,5 +169,35 @@ void IniSection::read(const char* key, uint64_t& value) const
     if (errno == ERANGE) fail(std::string(key) + " = '" + s + "' is too large");
     value = v;
 }
+
+void IniSection::read(const char* key, std::vector<double>& values) const
+{
+    std::string s;
+    if (!text(key, s)) return;
+    values.clear();
+    std::string item;
+    auto flush = [&]
+    {
+        if (item.empty()) return;
+        char* end = nullptr;
+        errno = 0;
+        const double v = std::strtod(item.c_str(), &end);
+        if (end != item.c_str() + item.size() || errno == ERANGE || !std::isfinite(v))
+            fail(std::string(key) + " = '" + s + "': '" + item + "' is not a number");
+        values.push_back(v);
+        item.clear();
+    };
+    for (const char ch : s)
+    {
+        if (ch == ' ' || ch == ',' || ch == '\t')
+            flush();
+        else
+            item += ch;
+    }
+    flush();
+    if (values.empty()) fail(std::string(key) + " is empty");
+}
+
+bool IniSection::has(const char* key) const { return config_.keyExists(section_, key); }
 
 }  // namespace hif::mrpt_adapter

@@ -30,6 +30,10 @@ public:
     void read(const char* key, double& value) const;
     void read(const char* key, bool& value) const;
     void read(const char* key, uint64_t& value) const;
+    /** Numbers separated by spaces or commas; throws if any is not a whole number. */
+    void read(const char* key, std::vector<double>& values) const;
+    /** Whether the section has `key`. */
+    [[nodiscard]] bool has(const char* key) const;
 
     /** "'<file>', [<section>]" (or "[<section>]" when the configuration has no file). */
     [[nodiscard]] const std::string& where() const { return where_; }

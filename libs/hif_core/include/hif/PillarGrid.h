@@ -148,7 +148,9 @@ public:
     /** The model of the LiDAR in effect (estimated from the first scan with
      *  Params::sensor_from_scans, or set); none before. */
     [[nodiscard]] const std::optional<SensorModel>& sensorModel() const { return sensor_; }
-    /** Sets the model in effect (or none). Throws std::invalid_argument if it is invalid. */
+    /** Sets the model in effect (or none), given rather than estimated: with
+     *  Params::sensor_from_scans, the next scan inserted is checked against it (and every 50th
+     *  after). Throws std::invalid_argument if it is invalid. */
     void setSensorModel(std::optional<SensorModel> model);
     /** Range images' layout for the model in effect (RangeImageLayout::forSensor()). */
     [[nodiscard]] const RangeImageLayout& imageLayout() const { return layout_; }
@@ -208,7 +210,7 @@ private:
     std::optional<SensorModel> sensor_;
     std::vector<double> beam_tangents_;  ///< sensor_->beamTangents()
     RangeImageLayout layout_ = RangeImageLayout::forSensor(std::nullopt);
-    std::size_t scans_since_check_ = 0;
+    std::size_t scans_since_check_ = 0;  ///< a check is due when it reaches kSensorCheckInterval
 
     /** Log-odds of P(static) at a world point (logit(p_empty_init) where nothing is known). */
     [[nodiscard]] double logOddsAt(double x, double y, double z) const;

@@ -36,6 +36,18 @@ struct SensorModel
     /** Degrees of azimuth the scan covers (360 for a spinning LiDAR). */
     double azimuth_coverage_deg = 0.0;
 
+    /** A spinning LiDAR given by its beams' elevations (any order), its horizontal step and
+     *  the azimuth it covers: the field of view from the lowest to the highest beam, the
+     *  vertical spacing the median gap between neighbours. Throws std::invalid_argument if it
+     *  makes no sense (fewer than 2 beams, two at one elevation, see validate()). */
+    [[nodiscard]] static SensorModel fromBeams(std::vector<double> elevations_deg,
+                                               double horizontal_resolution_deg,
+                                               double azimuth_coverage_deg = 360.0);
+    /** A non-repetitive pattern (a Livox rosette) given by its field of view and the mean
+     *  angle between its points in one scan. Throws std::invalid_argument as validate(). */
+    [[nodiscard]] static SensorModel fromPattern(double elevation_min_deg, double elevation_max_deg,
+                                                 double spacing_deg, double azimuth_coverage_deg);
+
     [[nodiscard]] bool hasRings() const { return !beam_elevations_deg.empty(); }
     /** tan() of the beams' elevations (ascending), for beamGapSlope(). */
     [[nodiscard]] std::vector<double> beamTangents() const;

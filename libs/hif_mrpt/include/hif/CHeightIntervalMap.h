@@ -127,6 +127,14 @@ public:
          *  property of the machine, not of the map: read from and written to .ini files but
          *  not serialized with the map (Default: 1) */
         uint64_t threads = 1;
+        /** The LiDAR, when given instead of estimated from the scans (see doc/sensors.md):
+         *  `sensor_beams_deg` (every beam's elevation) and `sensor_horizontal_resolution_deg`
+         *  for a spinning LiDAR, or `sensor_fov_deg` (lowest and highest elevation) and
+         *  `sensor_spacing_deg` for a non-repetitive one, and `sensor_azimuth_deg` (Default:
+         *  360). With sensor_from_scans, the first scan and every 50th after are checked
+         *  against it. The model itself is serialized with the map, these keys are not
+         *  (Default: none) */
+        std::optional<SensorModel> sensor;
 
         /** Loads every field; throws std::invalid_argument if the result is invalid, naming
          *  the section and the field. */
