@@ -381,14 +381,17 @@ TEST(FreeSpaceTestScans, TheNewestAreKeptAndAScanIsFoundByItsPointsAndPose)
     EXPECT_FALSE(t.find(scans[1].view(), scans[1].pose));
     EXPECT_EQ(t.find(scans[2].view(), scans[2].pose), std::optional<std::size_t>(0));
     EXPECT_EQ(t.find(scans[4].view(), scans[4].pose), std::optional<std::size_t>(2));
-    // The same points at another pose, or one point moved by a float's last bit, are another
-    // scan.
+    // The same points at another pose, one point fewer, or a point the fingerprint reads moved
+    // by a float's last bit, are another scan.
     Eigen::Isometry3d moved = scans[4].pose;
     moved.translation().x() += 1e-9;
     EXPECT_FALSE(t.find(scans[4].view(), moved));
     Scan nudged = scans[4];
-    nudged.z[7] = std::nextafter(nudged.z[7], 1.0f);
+    nudged.z[0] = std::nextafter(nudged.z[0], 1.0f);
     EXPECT_FALSE(t.find(nudged.view(), nudged.pose));
+    PointsView fewer = scans[4].view();
+    --fewer.size;
+    EXPECT_FALSE(t.find(fewer, scans[4].pose));
     EXPECT_EQ(FreeSpaceTest::fingerprint(scans[4].view(), scans[4].pose),
               t.scans().back().fingerprint);
     EXPECT_GT(t.memoryBytes(), 3 * 400000u);  // three images of 2 bytes a cell

@@ -5,7 +5,9 @@
  */
 #include "RangeImage.h"
 
+#include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 
 #include "Simd.h"
@@ -113,7 +115,14 @@ template <typename T, typename Keep>
 void fillImage(const RangeImageLayout& l, const PointsView& pts, std::vector<T>& img, T none,
                Keep keep)
 {
-    img.assign(l.cells(), none);
+    img.resize(l.cells());
+    // A "no return" whose bytes are all alike (all of ours) is a memset; a loop otherwise.
+    unsigned char bytes[sizeof(T)];
+    std::memcpy(bytes, &none, sizeof(T));
+    if (std::all_of(bytes, bytes + sizeof(T), [&](unsigned char b) { return b == bytes[0]; }))
+        std::memset(static_cast<void*>(img.data()), bytes[0], img.size() * sizeof(T));
+    else
+        std::fill(img.begin(), img.end(), none);
     constexpr std::size_t kBlock = 256;
     alignas(64) int32_t cells[kBlock];
     alignas(64) float ranges[kBlock];
@@ -132,10 +141,7 @@ void buildReturnImage(const RangeImageLayout& l, const PointsView& pts,
                       std::vector<BeamReturn>& img)
 {
     fillImage(l, pts, img, BeamReturn{},
-              [](BeamReturn& cell, float r, float tan_el)
-              {
-                  if (r < cell.range) cell = {r, tan_el};
-              });
+              [](BeamReturn& cell, float r, float tan_el) { cell.keepNearer(r, tan_el); });
 }
 
 void buildRangeImageCm(const RangeImageLayout& l, const PointsView& pts, std::vector<uint16_t>& img)

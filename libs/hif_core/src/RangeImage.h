@@ -72,11 +72,36 @@ struct IntervalWidths
 
 /** One cell of a scan's range image for insertion: the nearest return in it, with the
  *  tangent of its elevation (sensor frame), which places its beam more finely than the cell's
- *  row does. */
+ *  row does. Four bytes, as a float range was: centimetres (up to 655.34 m) and the tangent
+ *  in steps of 1/16384 (6 mm at 100 m; elevations within +-63 degrees). */
 struct BeamReturn
 {
-    float range = std::numeric_limits<float>::infinity();  ///< metres; +inf: no return
-    float tan_el = 0.0f;
+    static constexpr uint16_t kNone = 0xFFFF;
+    static constexpr double kTanStep = 1.0 / 16384.0;
+
+    uint16_t range_cm = kNone;
+    int16_t tan_q = -1;  ///< all bits set where no return, as range_cm: an image is a memset
+
+    /** Metres; +inf where no return. */
+    [[nodiscard]] float range() const
+    {
+        return range_cm == kNone ? std::numeric_limits<float>::infinity()
+                                 : static_cast<float>(range_cm) * 0.01f;
+    }
+    [[nodiscard]] double tan() const { return tan_q * kTanStep; }
+    /** Keeps a return at `range` metres with elevation tangent `tan_el` when it is nearer
+     *  than the cell's. */
+    void keepNearer(float range, float tan_el)
+    {
+        // Rounded to centimetres: truncating x + 0.5 (>= 0) is below an integer exactly when
+        // x + 0.5 is, so the comparison needs no conversion.
+        const float cm = range * 100.0f + 0.5f;
+        if (!(cm < static_cast<float>(range_cm))) return;  // also beyond 655.34 m, and NaN
+        range_cm = static_cast<uint16_t>(cm);
+        const float q =
+            std::clamp(tan_el * static_cast<float>(1.0 / kTanStep), -32767.0f, 32767.0f);
+        tan_q = static_cast<int16_t>(q + (q >= 0.0f ? 0.5f : -0.5f));  // rounded
+    }
 };
 
 /** The see-through test of one pillar against a scan's range image (nearest return per cell,
@@ -148,7 +173,7 @@ struct BeamGate
             const BeamReturn* line = rowOf(row);
             for (int k = 0; k < a.ncols; ++k)
             {
-                const double r = line[a.cols[k]].range;
+                const double r = line[a.cols[k]].range();
                 if (!std::isfinite(r)) continue;  // no return: no evidence
                 if (r > margin && (r - margin) * (r - margin) > dist2) return true;
             }
@@ -166,77 +191,76 @@ struct BeamGate
         out.clear();
         Axis a;
         if (!axisOf(lo, hi, a)) return;
-        const RangeImageLayout& l = *layout;
-        // The rows of [lo, hi) first: a veto, or a beam through the core, settles it.
-        bool passed = false, blocked = false;
-        for (int row = a.row1; row >= a.row0; --row)
+        if (core.lo <= lo && core.hi >= hi)
         {
-            const double dist2 = a.dist2(l, row);
-            const BeamReturn* line = rowOf(row);
-            for (int k = 0; k < a.ncols; ++k)
-            {
-                const BeamReturn& ret = line[a.cols[k]];
-                const double r = ret.range;
-                if (!std::isfinite(r)) continue;  // no return: no evidence
-                const double beyond = r - margin, near = r + margin;
-                if (beyond > 0.0 && beyond * beyond > dist2)
-                {
-                    passed = true;
-                    if (core.lo < core.hi)
-                    {
-                        const Span c = crossedCells(ret.tan_el, a);
-                        if (c.lo < core.hi && core.lo < c.hi)
-                        {
-                            out.assign(1, Span{lo, hi});
-                            // Still vetoed by a return near the pillar in the rows below.
-                            for (int rr = row; rr >= a.row0; --rr)
-                                if (anyNear(rr, a)) return out.clear();
-                            return;
-                        }
-                    }
-                }
-                else if (near * near > dist2)
-                    return;  // something is there
-                else
-                    blocked = true;  // occluded by something closer
-            }
+            // An object: any beam through it shows all of it gone, unless one is vetoed; with
+            // none through it, neighbouring beams on both sides may still bridge across it.
+            const Crossing c = objectCrossing(a, lo, hi);
+            if (c == Crossing::Passed) out.assign(1, Span{lo, hi});
+            if (c != Crossing::None || !passesAround(a)) return;
         }
-        // No beam passed here, and one in front of the pillar splits what is above from what
-        // is below: nothing to bridge across either.
-        if (!passed && (blocked || bridge_tan == 0.0)) return;
-        // The heights each beam crossed, and between neighbours, from one beam spacing above
-        // [lo, hi) to one below (a beam outside can bridge to one inside).
+        const RangeImageLayout& l = *layout;
+        // From one beam spacing above [lo, hi) to one below (a beam outside can bridge to one
+        // inside): the heights each beam crossed, and between neighbours; a return near the
+        // pillar between lo and hi vetoes, a beam through the core shows all of it gone.
         const int extra = static_cast<int>(std::ceil(bridge_tan / l.tan_res));
         const int top = std::min(l.rows - 1, a.row1 + extra);
         const int bottom = std::max(0, a.row0 - extra);
-        bool have_prev = false, broken = false;
+        bool have_prev = false, broken = false, core_passed = false;
+        bool passed_own = false, blocked_own = false;
         double prev_tan = 0.0;
         Span prev{0, 0};
         for (int row = top; row >= bottom; --row)
         {
+            const bool own = row >= a.row0 && row <= a.row1;
+            if (core_passed && !own) break;  // all that is left to look for is a veto
             const double dist2 = a.dist2(l, row);
             const BeamReturn* line = rowOf(row);
             for (int k = 0; k < a.ncols; ++k)
             {
                 const BeamReturn& ret = line[a.cols[k]];
-                const double r = ret.range;
-                if (!std::isfinite(r)) continue;
-                const double beyond = r - margin;
+                const double r = ret.range();
+                if (!std::isfinite(r)) continue;  // no return: no evidence
+                const double beyond = r - margin, near = r + margin;
                 if (beyond > 0.0 && beyond * beyond > dist2)
                 {
-                    const Span c = crossedCells(ret.tan_el, a);
-                    if (have_prev && !broken && std::abs(prev_tan - ret.tan_el) <= bridge_tan)
+                    passed_own = passed_own || own;
+                    if (core_passed) continue;
+                    const Span c = crossedCells(ret.tan(), a);
+                    if (own && core.lo < core.hi && c.lo < core.hi && core.lo < c.hi)
+                        core_passed = true;
+                    if (have_prev && !broken && std::abs(prev_tan - ret.tan()) <= bridge_tan)
                         out.push_back({std::min(c.lo, prev.lo), std::max(c.hi, prev.hi)});
                     else
                         out.push_back(c);
                     have_prev = true;
                     broken = false;
                     prev = c;
-                    prev_tan = ret.tan_el;
+                    prev_tan = ret.tan();
+                }
+                else if (own && near * near > dist2)
+                {
+                    out.clear();  // something is there
+                    return;
                 }
                 else
+                {
                     broken = true;  // a return near or in front: unknown behind it
+                    blocked_own = blocked_own || own;
+                }
             }
+        }
+        if (core_passed)
+        {
+            out.assign(1, Span{lo, hi});
+            return;
+        }
+        // No beam passed between lo and hi, and one in front of the pillar there: what beams
+        // above or below crossed of it is not seen through it.
+        if (!passed_own && blocked_own)
+        {
+            out.clear();
+            return;
         }
         // Clipped to [lo, hi), sorted and joined.
         std::size_t w = 0;
@@ -299,6 +323,73 @@ private:
         return true;
     }
 
+    /** What the rows of `a` say of heights [lo, hi) of the pillar: a beam passed through
+     *  them, a return near the pillar vetoes, or neither (and whether a return in front of it
+     *  blocks the view). */
+    enum class Crossing : uint8_t
+    {
+        Passed,
+        Vetoed,
+        Blocked,
+        None
+    };
+    [[nodiscard]] Crossing objectCrossing(const Axis& a, int32_t lo, int32_t hi) const
+    {
+        bool passed = false, blocked = false;
+        for (int row = a.row1; row >= a.row0; --row)
+        {
+            if (passed)
+            {
+                if (anyNear(row, a)) return Crossing::Vetoed;
+                continue;
+            }
+            const double dist2 = a.dist2(*layout, row);
+            const BeamReturn* line = rowOf(row);
+            for (int k = 0; k < a.ncols; ++k)
+            {
+                const BeamReturn& ret = line[a.cols[k]];
+                const double r = ret.range();
+                if (!std::isfinite(r)) continue;  // no return: no evidence
+                const double beyond = r - margin, near = r + margin;
+                if (beyond > 0.0 && beyond * beyond > dist2)
+                {
+                    const Span c = crossedCells(ret.tan(), a);
+                    passed = passed || (c.lo < hi && lo < c.hi);
+                }
+                else if (near * near > dist2)
+                    return Crossing::Vetoed;  // something is there
+                else
+                    blocked = true;
+            }
+        }
+        return passed ? Crossing::Passed : (blocked ? Crossing::Blocked : Crossing::None);
+    }
+
+    /** Whether beams within one beam spacing (bridge_tan) both above and below the rows of
+     *  `a` passed the pillar: only then can two of them bridge across those rows. */
+    [[nodiscard]] bool passesAround(const Axis& a) const
+    {
+        if (bridge_tan == 0.0) return false;
+        const RangeImageLayout& l = *layout;
+        const int extra = static_cast<int>(std::ceil(bridge_tan / l.tan_res));
+        auto anyPass = [&](int from, int to)
+        {
+            for (int row = std::max(0, from); row <= std::min(l.rows - 1, to); ++row)
+            {
+                const double dist2 = a.dist2(l, row);
+                const BeamReturn* line = rowOf(row);
+                for (int k = 0; k < a.ncols; ++k)
+                {
+                    const double r = line[a.cols[k]].range();
+                    if (std::isfinite(r) && r > margin && (r - margin) * (r - margin) > dist2)
+                        return true;
+                }
+            }
+            return false;
+        };
+        return anyPass(a.row1 + 1, a.row1 + extra) && anyPass(a.row0 - extra, a.row0 - 1);
+    }
+
     [[nodiscard]] const BeamReturn* rowOf(int row) const
     {
         return image + static_cast<std::size_t>(row) * layout->cols;
@@ -311,7 +402,7 @@ private:
         const BeamReturn* line = rowOf(row);
         for (int k = 0; k < a.ncols; ++k)
         {
-            const double r = line[a.cols[k]].range;
+            const double r = line[a.cols[k]].range();
             if (!std::isfinite(r)) continue;
             const double beyond = r - margin, near = r + margin;
             if (!(beyond > 0.0 && beyond * beyond > dist2) && near * near > dist2) return true;
@@ -355,7 +446,7 @@ inline double pillarReach(double size, double dx, double dy)
 }
 
 /** Fills `img` (layout `l`, row-major) with the nearest return of `points`
- *  (sensor frame) in every cell; BeamReturn{} (range +infinity) where no return falls. Four
+ *  (sensor frame) in every cell; BeamReturn{} (no return) where none falls. Four
  *  points at a time with AVX when useAvx() (the same bits as one at a time). */
 void buildReturnImage(const RangeImageLayout& l, const PointsView& points,
                       std::vector<BeamReturn>& img);

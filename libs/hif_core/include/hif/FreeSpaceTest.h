@@ -39,6 +39,8 @@ class FreeSpaceTest
 public:
     /** "No return" in an image. */
     static constexpr uint16_t kNoReturn = 0xFFFF;
+    /** Points of a scan that its fingerprint() reads (all of a smaller scan). */
+    static constexpr std::size_t kFingerprintPoints = 4096;
 
     /** One scan of the test. */
     struct Scan
@@ -76,8 +78,9 @@ public:
     /** Position in scans() of the scan with these points at this pose, if the test holds it. */
     [[nodiscard]] std::optional<std::size_t> find(const PointsView& points,
                                                   const Eigen::Isometry3d& sensor_to_world) const;
-    /** Identifies a scan: a 64-bit digest of its points' coordinates (their bits) and of its
-     *  pose, the same on every run and machine. */
+    /** Identifies a scan: a 64-bit digest of its pose, its point count and the coordinates
+     *  (their bits) of kFingerprintPoints of its points spread over it, the same on every run
+     *  and machine. */
     [[nodiscard]] static uint64_t fingerprint(const PointsView& points,
                                               const Eigen::Isometry3d& sensor_to_world);
 
