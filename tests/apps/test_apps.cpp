@@ -718,7 +718,7 @@ TEST_P(RealKitti, OfflineCleaningMeetsTheFloors)
 }
 
 // The issue's targets as floors (04: AA >= 95; 03: SA >= 98), and SA floors a little under
-// what the shipped kitti.ini measures (01: SA 99.17, AA 94.96; 03: SA 98.81; 04: SA 98.93, AA
+// what the shipped kitti.ini measures (01: SA 99.17, AA 94.96; 03: SA 98.80; 04: SA 98.91, AA
 // 96.52). 01's AA floor is 94.9, under the earlier target of 95: since misses are given only
 // where beams passed (doc/sensors.md), the far cars that only beams through their intervals'
 // padding saw through are kept (DA 92.26 -> 90.93). The results are deterministic, so a
@@ -730,8 +730,8 @@ INSTANTIATE_TEST_SUITE_P(Sequences, RealKitti,
 
 // KITTI 04 with every 2nd and every 4th ring (about an HDL-32E's and a VLP-16's spacing): the
 // copies hold their rings and labels, and are cleaned. The floors are a little under today's
-// figures (misses where beams passed; 32 rings: SA 98.24, AA 95.04; 16 rings: SA 95.96, AA
-// 91.97), as a guard against regressions on the way to issue 20's SA >= 98.
+// figures (misses where beams passed; 32 rings: SA 98.21, AA 95.11; 16 rings: SA 95.89, AA
+// 91.94), as a guard against regressions on the way to issue 20's SA >= 98.
 TEST(RealKittiRings, SparserCopiesOf04KeepTheirRingsAndLabelsAndAreCleaned)
 {
     const std::string dir = hif::test::kittiRoot() + "/sequences/04";
@@ -1018,7 +1018,7 @@ TEST(Sensors, EachSensorsClipIsCleanedWithTheDefaults)
                                                {"hdl-32e", 98.4, 98.3, 99.5, 75.0},
                                                {"vlp-16", 97.0, 95.0, 99.2, 61.0},
                                                {"os1-128", 98.8, 99.3, 99.5, 87.0},
-                                               {"mid-70", 75.5, 64.0, 82.5, 80.0}})
+                                               {"mid-70", 73.5, 65.0, 82.0, 80.0}})
         for (const std::string scene : {"street", "walkers"})
         {
             SCOPED_TRACE(f.sensor + " " + scene);

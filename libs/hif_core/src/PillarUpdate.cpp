@@ -165,17 +165,11 @@ void PillarUpdater::update(Pillar& g, const Span* t, std::size_t nt, int32_t cei
                 emit(lo, hi, gi[i].logodds + model.miss);  // Eq. 13: expected, not seen
         }
         else if (in_t)
-        {
-            // Eq. 14: new, prior p_empty. Unseen-height prior: p_empty_init where no scan could
-            // look before, and where no scan showed the pillar empty: between two surfaces
-            // it already holds (a sparse or non-repetitive LiDAR samples a wall at new
-            // heights in every scan; p_empty speaks for where beams passed, elsewhere).
-            const bool unseen =
-                model.unseen_prior &&
-                (lo >= seen_top || (ng > 0 && lo >= gi[0].lo && hi <= gi[ng - 1].hi));
+            // Eq. 14: new, prior p_empty; unseen-height prior: p_empty_init where no scan
+            // could look before.
             emit(lo, hi,
-                 (unseen ? std::max(empty_prior, model.empty_init) : empty_prior) + model.hit);
-        }
+                 (model.unseen_prior && lo >= seen_top ? model.empty_init : empty_prior) +
+                     model.hit);
         // neither: not covered by any observation, discarded.
         x = next;
     }

@@ -133,29 +133,32 @@ struct BeamGate
     /** The sensor's height in the world frame, metres (-up.base, given exactly). */
     double sensor_z = 0.0;
 
-    /** The core (IntervalWidths::core()) of interval [lo, hi) of this pillar, with the
-     *  widths of its middle height at the pillar's distance. */
-    [[nodiscard]] Span intervalCore(int32_t lo, int32_t hi) const
+    /** The widths (IntervalWidths) of interval [lo, hi) of this pillar: those of its middle
+     *  height at the pillar's distance. */
+    [[nodiscard]] IntervalWidths widthsOf(int32_t lo, int32_t hi) const
     {
         // Horizontal distance to the axis: base without its component along the vertical.
         const double d = (base - up * up.dot(base)).norm();
-        if (d == 0.0 || !grid) return {0, 0};
+        if (d == 0.0 || !grid) return {};
         const double mid = 0.5 * (static_cast<double>(lo) + hi) * res - sensor_z;  // above it
-        return IntervalWidths::of(*grid, d, mid / d).core(lo, hi);
+        return IntervalWidths::of(*grid, d, mid / d);
     }
 
     /** What a beam must cross to show all of the piece [lo, hi) of interval `k` of `iv`
-     *  (the pillar's intervals, ascending) empty, for passedCells(). The pillar's lowest
-     *  interval is its floor (the ground, mostly): beams reach it at grazing angles from above
-     *  and pass through the padding around what was seen of it, so only a beam through what
-     *  was seen (intervalCore()) shows all of it gone, and any other only the heights it
-     *  crossed. An interval above the floor is an object: a beam through any part of it shows
-     *  it gone. */
+     *  (the pillar's intervals, ascending), for passedCells(). An interval seen at one height
+     *  (what was seen of it, its core, thinner than the gap between two beams) at the bottom of
+     *  the pillar is a floor: the ground, mostly, which beams reach at grazing angles from above
+     *  through the padding around what was seen; only a beam through its core shows all of it
+     *  gone, any other only the heights it crossed. Any other interval is an object (taller
+     *  than one beam's sample, or standing on something the map holds): a beam through any
+     *  part of it shows it gone. */
     [[nodiscard]] Span floorOrObject(const Interval* iv, std::size_t k, int32_t lo,
                                      int32_t hi) const
     {
         if (k > 0) return {lo, hi};
-        const Span c = intervalCore(iv[0].lo, iv[0].hi);
+        const IntervalWidths w = widthsOf(iv[0].lo, iv[0].hi);
+        const Span c = w.core(iv[0].lo, iv[0].hi);
+        if (int64_t{c.hi} - c.lo >= 2 * int64_t{w.pad}) return {lo, hi};  // seen by two beams
         return {std::max(c.lo, lo), std::min(c.hi, hi)};
     }
 
