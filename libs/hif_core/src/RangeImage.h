@@ -128,7 +128,7 @@ struct BeamGate
      *  tangents at most this apart (neighbouring beams of the sensor), show the heights
      *  between them empty too; 0: each beam only its own. */
     double bridge_tan = 0.0;
-    /** For intervalCore(): the grid (its interval widths). */
+    /** For widthsOf(): the grid (its interval widths). */
     const PillarGrid* grid = nullptr;
     /** The sensor's height in the world frame, metres (-up.base, given exactly). */
     double sensor_z = 0.0;
@@ -145,20 +145,16 @@ struct BeamGate
     }
 
     /** What a beam must cross to show all of the piece [lo, hi) of interval `k` of `iv`
-     *  (the pillar's intervals, ascending), for passedCells(). An interval seen at one height
-     *  (what was seen of it, its core, thinner than the gap between two beams) at the bottom of
-     *  the pillar is a floor: the ground, mostly, which beams reach at grazing angles from above
-     *  through the padding around what was seen; only a beam through its core shows all of it
-     *  gone, any other only the heights it crossed. Any other interval is an object (taller
-     *  than one beam's sample, or standing on something the map holds): a beam through any
-     *  part of it shows it gone. */
+     *  (the pillar's intervals, ascending), for passedCells(). The pillar's lowest interval is
+     *  its floor (the ground, mostly): beams reach it at grazing angles from above and pass
+     *  through the padding around what was seen of it, so only a beam through what was seen
+     *  (its core) shows all of it gone, any other only the heights it crossed. An interval
+     *  above the floor is an object: a beam through any part of it shows it gone. */
     [[nodiscard]] Span floorOrObject(const Interval* iv, std::size_t k, int32_t lo,
                                      int32_t hi) const
     {
         if (k > 0) return {lo, hi};
-        const IntervalWidths w = widthsOf(iv[0].lo, iv[0].hi);
-        const Span c = w.core(iv[0].lo, iv[0].hi);
-        if (int64_t{c.hi} - c.lo >= 2 * int64_t{w.pad}) return {lo, hi};  // seen by two beams
+        const Span c = widthsOf(iv[0].lo, iv[0].hi).core(iv[0].lo, iv[0].hi);
         return {std::max(c.lo, lo), std::min(c.hi, hi)};
     }
 
