@@ -49,6 +49,25 @@ sigset_t stopSignals()
     return set;
 }
 
+/** Removes `path` (a file or a folder and what it holds) that the main thread may still be
+ *  writing into: a folder is first moved aside, so that files the main thread opens after that
+ *  fail instead of landing in it while it is removed; what it writes under the old name in the
+ *  meantime is removed after. Whether anything was removed. */
+bool removeWhileWritten(const std::string& path)
+{
+    std::error_code ec;
+    bool removed = false;
+    if (fs::is_directory(path, ec))
+    {
+        const std::string aside = path + ".removing";
+        fs::rename(path, aside, ec);
+        if (!ec) removed = fs::remove_all(aside, ec) > 0;
+    }
+    for (int attempt = 0; attempt < 5 && fs::exists(path, ec); ++attempt)
+        removed = fs::remove_all(path, ec) > 0 || removed;
+    return removed;
+}
+
 [[noreturn]] void waitForSignal(sigset_t set)
 {
     int sig = 0;
@@ -67,7 +86,7 @@ sigset_t stopSignals()
             if (only_if_empty)
                 removed += fs::is_empty(path, ec) && fs::remove(path, ec) ? 1 : 0;
             else
-                removed += fs::remove_all(path, ec) > 0 ? 1 : 0;
+                removed += removeWhileWritten(path) ? 1 : 0;
         }
     }
     const char* abbrev = sigabbrev_np(sig);
