@@ -685,3 +685,75 @@ TEST(SeeThroughMisses, AReturnNearThePillarVetoesBeamsThatPassedThroughIt)
     // as passing through.
     EXPECT_FALSE(carStaticAfter(40.0, std::vector<Beams>{through, {-0.6, -0.3, 23.5}}));
 }
+
+namespace
+{
+/** Rings every degree from -10 to +10 degrees at a 0.5-degree step, as a sensor model. */
+SensorModel ringsEveryDegree()
+{
+    std::vector<double> el;
+    for (int e = -10; e <= 10; ++e) el.push_back(e);
+    return SensorModel::fromBeams(el, 0.5);
+}
+
+/** Points of the rings of `model` at azimuth `az_deg` whose beams reach heights [z0, z1] at
+ *  horizontal distance `d`, each `range` m away (or at the point itself when range is 0). */
+void ringsToward(const SensorModel& model, double az_deg, double d, double z0, double z1,
+                 double range, std::vector<float>& x, std::vector<float>& y, std::vector<float>& z)
+{
+    const double az = az_deg * M_PI / 180.0;
+    for (const double e_deg : model.beam_elevations_deg)
+    {
+        const double e = e_deg * M_PI / 180.0, h = d * std::tan(e);
+        if (h < z0 || h > z1) continue;
+        const double r = range > 0 ? range : std::hypot(d, h);
+        x.push_back(float(r * std::cos(e) * std::cos(az)));
+        y.push_back(float(r * std::cos(e) * std::sin(az)));
+        z.push_back(float(r * std::sin(e)));
+    }
+}
+}  // namespace
+
+// A car on a road that climbs above the sensor, 20 m away, seen by the rings above the horizon;
+// when it has gone, those rings return nothing in its direction (the sky), while they return
+// from a far hill a degree aside: they were fired. Seen once, the car is taken for gone; seen
+// twice, it is kept (a surface seen twice that returns nothing now may be glass, or dark).
+TEST(SeeThroughMisses, RingsThatReturnedNothingWhereAHeightSeenOnceWasShowItGone)
+{
+    const SensorModel model = ringsEveryDegree();
+    for (const int sightings : {1, 2})
+    {
+        SCOPED_TRACE(sightings);
+        Params prm;
+        prm.see_through_range = 40.0;
+        PillarGrid grid(GridGeometry(), prm);
+        grid.setSensorModel(model);
+        std::vector<float> x, y, z;
+        // The car, in pillar (20, 0) at azimuth 1.4 degrees: heights 0.2 to 1.2 m above the
+        // sensor.
+        ringsToward(model, 1.4, 20.5, 0.2, 1.2, 0.0, x, y, z);
+        ASSERT_GE(x.size(), 3u);
+        for (int s = 0; s < sightings; ++s)
+            grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+        ASSERT_TRUE(grid.isStatic(20.5, 0.5, 0.7));
+        // Gone: the same rings return from a hill 200 m away a degree aside, and nothing toward
+        // the car's pillar.
+        x.clear(), y.clear(), z.clear();
+        ringsToward(model, 2.6, 20.5, 0.2, 1.2, 200.0, x, y, z);
+        grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+        EXPECT_EQ(grid.isStatic(20.5, 0.5, 0.7), sightings == 2);
+    }
+    // Without rings (a non-repetitive pattern) a cell without a return may have had no beam:
+    // nothing is taken from it.
+    Params prm;
+    prm.see_through_range = 40.0;
+    PillarGrid grid(GridGeometry(), prm);
+    grid.setSensorModel(SensorModel::fromPattern(-10, 10, 1.0, 360));
+    std::vector<float> x, y, z;
+    ringsToward(model, 1.4, 20.5, 0.2, 1.2, 0.0, x, y, z);
+    grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+    x.clear(), y.clear(), z.clear();
+    ringsToward(model, 2.6, 20.5, 0.2, 1.2, 200.0, x, y, z);
+    grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+    EXPECT_TRUE(grid.isStatic(20.5, 0.5, 0.7));
+}

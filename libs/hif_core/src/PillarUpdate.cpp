@@ -151,7 +151,8 @@ void PillarUpdater::update(Pillar& g, const Span* t, std::size_t nt, int32_t cei
                 // Eq. 13 where beams of the scan passed through; elsewhere the scan could not
                 // see: keep (BeamGate::floorOrObject()).
                 const Span core = gate->floorOrObject(gi, i, lo, hi);
-                gate->passedCells(lo, hi, {std::max(core.lo, lo), std::min(core.hi, hi)}, passed_);
+                gate->passedCells(lo, hi, {std::max(core.lo, lo), std::min(core.hi, hi)}, passed_,
+                                  gate->skyFor(gi[i].logodds));
                 int32_t at = lo;
                 for (const Span& s : passed_)
                 {

@@ -132,6 +132,16 @@ struct BeamGate
     const PillarGrid* grid = nullptr;
     /** The sensor's height in the world frame, metres (-up.base, given exactly). */
     double sensor_z = 0.0;
+    /** Log-odds up to which an interval counts as seen once (p_empty_init and one hit), for
+     *  skyFor(); -inf: a beam that returned nothing is never evidence (a sensor without rings,
+     *  whose cells without a return may have had no beam). */
+    float seen_once = -std::numeric_limits<float>::infinity();
+
+    /** Whether beams of the sensor's rings that returned nothing above the horizon count as
+     *  passing through an interval of log-odds `l`: only for one seen once. If it were still
+     *  there, they would have returned from it, as a beam did before; a surface seen more than
+     *  once that returns nothing now (glass, a dark car, foliage) keeps what it has. */
+    [[nodiscard]] bool skyFor(float l) const { return l <= seen_once; }
 
     /** The widths (IntervalWidths) of interval [lo, hi) of this pillar: those of its middle
      *  height at the pillar's distance. */
@@ -185,7 +195,8 @@ struct BeamGate
      *  between two neighbouring beams that both passed (bridge_tan); all of [lo, hi) when a
      *  beam passed through `core` (floorOrObject()). Empty when none passed, or when a return
      *  between those heights lies near the pillar (something is there: a veto). */
-    void passedCells(int32_t lo, int32_t hi, Span core, std::vector<Span>& out) const
+    void passedCells(int32_t lo, int32_t hi, Span core, std::vector<Span>& out,
+                     bool sky = false) const
     {
         out.clear();
         Axis a;
@@ -194,9 +205,9 @@ struct BeamGate
         {
             // An object: any beam through it shows all of it gone, unless one is vetoed; with
             // none through it, neighbouring beams on both sides may still bridge across it.
-            const Crossing c = objectCrossing(a, lo, hi);
+            const Crossing c = objectCrossing(a, lo, hi, sky);
             if (c == Crossing::Passed) out.assign(1, Span{lo, hi});
-            if (c != Crossing::None || !passesAround(a)) return;
+            if (c != Crossing::None || !passesAround(a, sky)) return;
         }
         const RangeImageLayout& l = *layout;
         // From one beam spacing above [lo, hi) to one below (a beam outside can bridge to one
@@ -217,7 +228,7 @@ struct BeamGate
             const BeamReturn* line = rowOf(row);
             for (int k = 0; k < a.ncols; ++k)
             {
-                const BeamReturn& ret = line[a.cols[k]];
+                const BeamReturn ret = returnAt(line, row, a.cols[k], a, sky);
                 const double r = ret.range();
                 if (!std::isfinite(r)) continue;  // no return: no evidence
                 const double beyond = r - margin, near = r + margin;
@@ -332,7 +343,7 @@ private:
         Blocked,
         None
     };
-    [[nodiscard]] Crossing objectCrossing(const Axis& a, int32_t lo, int32_t hi) const
+    [[nodiscard]] Crossing objectCrossing(const Axis& a, int32_t lo, int32_t hi, bool sky) const
     {
         bool passed = false, blocked = false;
         for (int row = a.row1; row >= a.row0; --row)
@@ -346,7 +357,7 @@ private:
             const BeamReturn* line = rowOf(row);
             for (int k = 0; k < a.ncols; ++k)
             {
-                const BeamReturn& ret = line[a.cols[k]];
+                const BeamReturn ret = returnAt(line, row, a.cols[k], a, sky);
                 const double r = ret.range();
                 if (!std::isfinite(r)) continue;  // no return: no evidence
                 const double beyond = r - margin, near = r + margin;
@@ -366,7 +377,7 @@ private:
 
     /** Whether beams within one beam spacing (bridge_tan) both above and below the rows of
      *  `a` passed the pillar: only then can two of them bridge across those rows. */
-    [[nodiscard]] bool passesAround(const Axis& a) const
+    [[nodiscard]] bool passesAround(const Axis& a, bool sky) const
     {
         if (bridge_tan == 0.0) return false;
         const RangeImageLayout& l = *layout;
@@ -379,7 +390,7 @@ private:
                 const BeamReturn* line = rowOf(row);
                 for (int k = 0; k < a.ncols; ++k)
                 {
-                    const double r = line[a.cols[k]].range();
+                    const double r = returnAt(line, row, a.cols[k], a, sky).range();
                     if (std::isfinite(r) && r > margin && (r - margin) * (r - margin) > dist2)
                         return true;
                 }
@@ -387,6 +398,29 @@ private:
             return false;
         };
         return anyPass(a.row1 + 1, a.row1 + extra) && anyPass(a.row0 - extra, a.row0 - 1);
+    }
+
+    /** The return in cell (row, col) of `line`; with `sky`, a cell without one whose row holds
+     *  a return within a few columns (a ring of the sensor fired there) and looks above the
+     *  horizon reads as a beam that passed far, with that ring's elevation. */
+    [[nodiscard]] BeamReturn returnAt(const BeamReturn* line, int row, int col, const Axis& a,
+                                      bool sky) const
+    {
+        // A ring's beam that returned nothing: the row holds a return within a few columns.
+        const BeamReturn& ret = line[col];
+        if (!sky || ret.range_cm != BeamReturn::kNone) return ret;
+        const RangeImageLayout& l = *layout;
+        const double tan_row = l.tan_min + (row + 0.5) * l.tan_res;
+        if (up.x() * a.hx + up.y() * a.hy + up.z() * tan_row <= 0.0) return ret;
+        for (int dc = 1; dc <= 8; ++dc)
+            for (const int c : {(col + dc) % l.cols, (col - dc + l.cols) % l.cols})
+                if (line[c].range_cm != BeamReturn::kNone)
+                {
+                    BeamReturn far = line[c];
+                    far.range_cm = BeamReturn::kNone - 1;  // 655.34 m: beyond any pillar
+                    return far;
+                }
+        return ret;
     }
 
     [[nodiscard]] const BeamReturn* rowOf(int row) const
@@ -433,6 +467,16 @@ inline double neighbourBeamsTan(const PillarGrid& grid)
     const auto& model = grid.sensorModel();
     const double deg = model ? model->vertical_spacing_deg : grid.params().beam_spacing_deg;
     return std::tan(1.5 * deg * M_PI / 180.0);
+}
+
+/** BeamGate::seen_once for the grid: p_empty_init and one hit, in log-odds, when its sensor
+ *  model has rings (else -inf). */
+inline float seenOnce(const PillarGrid& grid)
+{
+    const auto& model = grid.sensorModel();
+    if (!model || !model->hasRings()) return -std::numeric_limits<float>::infinity();
+    const LogOddsModel m = LogOddsModel::fromParams(grid.params());
+    return m.empty_init + m.hit + 1e-4f;
 }
 
 /** Half the extent, along the ray from the sensor through its centre, of a pillar of side

@@ -24,7 +24,7 @@ void seeThroughPillar(Pillar& pil, const BeamGate& gate, const LogOddsModel& mod
     {
         const auto k = static_cast<std::size_t>(&iv - pil.intervals.data());
         gate.passedCells(iv.lo, iv.hi, gate.floorOrObject(pil.intervals.data(), k, iv.lo, iv.hi),
-                         passed);
+                         passed, gate.skyFor(iv.logodds));
         int32_t at = iv.lo;
         for (const Span& s : passed)
         {
@@ -81,6 +81,7 @@ void seeThroughMisses(PillarGrid& grid, const Eigen::Isometry3d& T, const ScanBu
     const Eigen::Vector3d up = Rt.col(2);  // world z axis in the sensor frame
     const std::size_t cap = prm.max_intervals_per_pillar;
     const double bridge = neighbourBeamsTan(grid);
+    const float seen_once = seenOnce(grid);
     forRanges(GridAccess::arena(grid), static_cast<std::size_t>(side), 8,
               [&](std::size_t a0, std::size_t a1)
               {
@@ -110,7 +111,8 @@ void seeThroughMisses(PillarGrid& grid, const Eigen::Isometry3d& T, const ScanBu
                                         pillarReach(ps, dx, dy),
                                         bridge,
                                         &grid,
-                                        t.z()};
+                                        t.z(),
+                                        seen_once};
                           seeThroughPillar(it->second, gate, model, cap, passed, pieces);
                       }
               });

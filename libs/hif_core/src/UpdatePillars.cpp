@@ -46,7 +46,8 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
                         pillarReach(geo.pillar_size, axis.x(), axis.y()),
                         bridge,
                         &grid,
-                        scan.sensor.z()};
+                        scan.sensor.z(),
+                        seenOnce(grid)};
     };
 
     InsertStats st;
