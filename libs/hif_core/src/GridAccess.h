@@ -25,6 +25,7 @@ struct Workspace
     std::vector<Pillar*> targets;              ///< per scan pillar: its map pillar, or null
     PillarUpdater updater{LogOddsModel(), 1};  ///< reset at every insertion
     std::vector<BeamReturn> range_image;       ///< the scan's returns (miss gates)
+    std::vector<uint8_t> returned_blocks;      ///< of range_image (buildReturnImage())
     std::vector<uint8_t> hit;                  ///< see-through misses: pillars the scan hit
 };
 

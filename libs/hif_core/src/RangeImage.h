@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -104,6 +105,10 @@ struct BeamReturn
     }
 };
 
+/** Cells of a block of buildReturnImage()'s `blocks` (the sky test of BeamGate looks this far
+ *  aside). */
+constexpr int kBlockCols = 8;
+
 /** The see-through test of one pillar against a scan's range image (nearest return per cell,
  *  with its elevation): where did beams of the scan pass through heights [lo, hi) (height
  *  cells) of the pillar whose axis is base + up * z in the sensor frame? In the direction of
@@ -142,6 +147,9 @@ struct BeamGate
      *  there, they would have returned from it, as a beam did before; a surface seen more than
      *  once that returns nothing now (glass, a dark car, foliage) keeps what it has. */
     [[nodiscard]] bool skyFor(float l) const { return l <= seen_once; }
+    /** The blocks of buildReturnImage() for `image`: where a beam that returned nothing had
+     *  neighbours that did. */
+    const uint8_t* returned_blocks = nullptr;
 
     /** The widths (IntervalWidths) of interval [lo, hi) of this pillar: those of its middle
      *  height at the pillar's distance. */
@@ -299,6 +307,7 @@ private:
         double d = 0.0;             ///< horizontal distance, metres
         double hx = 0.0, hy = 0.0;  ///< its direction
         int row0 = 0, row1 = 0;     ///< rows of the lowest and highest height
+        double horizon_tan = 0.0;   ///< elevation tangent of the world's horizon here
         /** The columns looked along: the centre's, and half_cols on each side (wrapped). */
         int cols[2 * kMaxHalfCols + 1] = {};
         int ncols = 0;
@@ -320,6 +329,7 @@ private:
         if (a.d == 0.0) return false;
         a.hx = p.x() / a.d;
         a.hy = p.y() / a.d;
+        a.horizon_tan = up.z() != 0.0 ? -(up.x() * a.hx + up.y() * a.hy) / up.z() : 0.0;
         const double paz = pseudoAzimuth(p.x(), p.y());
         const int k0 = imageCell(l, paz, std::max(p.z() / a.d, l.tan_min));
         const int k1 = imageCell(l, paz, std::min(hi_z / a.d, l.tan_max - 1e-12));
@@ -410,9 +420,14 @@ private:
         const BeamReturn& ret = line[col];
         if (!sky || ret.range_cm != BeamReturn::kNone) return ret;
         const RangeImageLayout& l = *layout;
-        const double tan_row = l.tan_min + (row + 0.5) * l.tan_res;
-        if (up.x() * a.hx + up.y() * a.hy + up.z() * tan_row <= 0.0) return ret;
-        for (int dc = 1; dc <= 8; ++dc)
+        if (l.tan_min + (row + 0.5) * l.tan_res <= a.horizon_tan) return ret;  // below it
+        // No return in this block of cells nor the next ones: open sky, or no ring here.
+        const std::size_t cell = static_cast<std::size_t>(row) * l.cols + col;
+        const std::size_t b = cell / kBlockCols, last = l.cells() / kBlockCols;
+        if (!returned_blocks[b] && !returned_blocks[b < last ? b + 1 : 0] &&
+            !returned_blocks[b > 0 ? b - 1 : last])
+            return ret;
+        for (int dc = 1; dc <= kBlockCols; ++dc)
             for (const int c : {(col + dc) % l.cols, (col - dc + l.cols) % l.cols})
                 if (line[c].range_cm != BeamReturn::kNone)
                 {
@@ -488,11 +503,12 @@ inline double pillarReach(double size, double dx, double dy)
     return m > 0.0 ? 0.5 * size * std::sqrt(dx * dx + dy * dy) / m : 0.5 * size;
 }
 
-/** Fills `img` (layout `l`, row-major) with the nearest return of `points`
- *  (sensor frame) in every cell; BeamReturn{} (no return) where none falls. Four
- *  points at a time with AVX when useAvx() (the same bits as one at a time). */
+/** Fills `img` (layout `l`, row-major) with the nearest return of `points` (sensor frame) in
+ *  every cell, BeamReturn{} (no return) where none falls, and `blocks` with a byte per block
+ *  of kBlockCols cells (of the flattened image): 1 where any return fell in it.
+ *  Four points at a time with AVX when useAvx() (the same bits as one at a time). */
 void buildReturnImage(const RangeImageLayout& l, const PointsView& points,
-                      std::vector<BeamReturn>& img);
+                      std::vector<BeamReturn>& img, std::vector<uint8_t>& blocks);
 
 /** "No return" in a range image in centimetres. */
 constexpr uint16_t kNoReturnCm = 0xFFFF;

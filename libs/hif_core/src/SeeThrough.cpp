@@ -46,7 +46,8 @@ bool needsScanImage(const Params& p) { return p.miss_needs_beam || p.see_through
 
 void buildScanImage(PillarGrid& grid, const PointsView& pts)
 {
-    buildReturnImage(grid.imageLayout(), pts, GridAccess::workspace(grid).range_image);
+    Workspace& ws = GridAccess::workspace(grid);
+    buildReturnImage(grid.imageLayout(), pts, ws.range_image, ws.returned_blocks);
 }
 
 void seeThroughMisses(PillarGrid& grid, const Eigen::Isometry3d& T, const ScanBuckets& scan)
@@ -112,7 +113,8 @@ void seeThroughMisses(PillarGrid& grid, const Eigen::Isometry3d& T, const ScanBu
                                         bridge,
                                         &grid,
                                         t.z(),
-                                        seen_once};
+                                        seen_once,
+                                        ws.returned_blocks.data()};
                           seeThroughPillar(it->second, gate, model, cap, passed, pieces);
                       }
               });

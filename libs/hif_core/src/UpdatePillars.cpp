@@ -31,6 +31,7 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
     // (RangeImageLayout::forSensor), so these hold the beam nearest the pillar's centre.
     constexpr int kHalfCols = 1;
     const double bridge = neighbourBeamsTan(grid);
+    const float seen_once = seenOnce(grid);
     auto gateOf = [&](std::size_t p)
     {
         const PillarIndex idx = unpackKey(scan.keys[p]);
@@ -47,7 +48,8 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
                         bridge,
                         &grid,
                         scan.sensor.z(),
-                        seenOnce(grid)};
+                        seen_once,
+                        ws.returned_blocks.data()};
     };
 
     InsertStats st;
