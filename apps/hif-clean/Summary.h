@@ -33,6 +33,8 @@ struct SummaryInfo
 void writeSummary(const std::string& file, const SummaryInfo& info,
                   const hif::CHeightIntervalMap& map, const Outputs& out, const Timings& t);
 
+/** The run's last lines: counts, map, times, and what was written (`extra`: the files asked
+ *  for besides the usual ones, such as classes.ply). */
 void printReport(const std::string& tag, const std::string& out_dir, const std::string& format,
                  const std::string& dm_output, bool online, const hif::CHeightIntervalMap& map,
-                 const Outputs& out, const Timings& t);
+                 const Outputs& out, const Timings& t, const std::vector<std::string>& extra);

@@ -460,7 +460,10 @@ int runClean(Cli& cli)
         std::cout << kTag << " wrote " << cli.rawlog_out.getValue() << ": " << rawlog_scans
                   << " scans without their dynamic points" << std::endl;
     }
-    printReport(kTag, run.out_dir, format, run.dm_output, run.online, *run.hif_map, out, t);
+    std::vector<std::string> extra;
+    if (cli.classes_ply.getValue()) extra.emplace_back("classes.ply");
+    if (cli.scene.getValue()) extra.emplace_back("map.3Dscene");
+    printReport(kTag, run.out_dir, format, run.dm_output, run.online, *run.hif_map, out, t, extra);
     if (out.drawsPicture() && !picture)
         std::cout << kTag << " map.png not drawn: no point could be drawn\n";
     if (picture && picture->points_outside > 0)

@@ -393,8 +393,17 @@ int run(Cli& cli)
         {
             const hif::io::Scores& s = total.by_range[b];
             const std::string n = hif::io::rangeBandName(b);
-            std::printf("%-14s %9zu %9zu %7.2f %7.2f\n", n.c_str(), s.static_total, s.dynamic_total,
-                        s.sa(), s.da());
+            // A band without static or dynamic points has no score for them: "-", as in the
+            // README's tables (the JSON keeps the convention of Scores: 100).
+            const auto pct = [](std::size_t count, double v)
+            {
+                char text[16];
+                if (count == 0) return std::string("      -");
+                std::snprintf(text, sizeof text, "%7.2f", v);
+                return std::string(text);
+            };
+            std::printf("%-14s %9zu %9zu %s %s\n", n.c_str(), s.static_total, s.dynamic_total,
+                        pct(s.static_total, s.sa()).c_str(), pct(s.dynamic_total, s.da()).c_str());
             auto jb = toJson(s);
             jb["band"] = n;
             bands.push_back(jb);

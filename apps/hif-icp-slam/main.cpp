@@ -324,9 +324,9 @@ int run(Cli& cli)
     staged.commit();
 
     std::cout << std::fixed << std::setprecision(3) << kTag << " scans " << poses.size()
-              << ", ms per scan: median " << per_scan.median << " (ICP " << icp_t.median
-              << (use_hif ? ", HIF " + std::to_string(hif_t.median) : std::string()) << "), p90 "
-              << per_scan.p90 << "\n";
+              << ", ms per scan: median " << per_scan.median << " (ICP " << icp_t.median;
+    if (use_hif) std::cout << ", HIF " << hif_t.median;
+    std::cout << "), p90 " << per_scan.p90 << "\n";
     if (not_aligned > 0)
         std::cout << kTag << " warning: " << not_aligned << " of " << poses.size() - 1
                   << " scans could not be aligned (fewer than " << kMinIcpPoints

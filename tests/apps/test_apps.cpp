@@ -182,6 +182,13 @@ TEST(HifEval, AgreesWithAHandCountedExample)
     }
     EXPECT_EQ(bands[0]["band"], "0-10");
     EXPECT_EQ(bands[4]["band"], "50+");
+    // Printed, a band without dynamic points has no DA ("-"), one without static points no SA.
+    EXPECT_NE(rb.output.find("20-35                  1         0  100.00       -"),
+              std::string::npos)
+        << rb.output;
+    EXPECT_NE(rb.output.find("35-50                  0         1       -    0.00"),
+              std::string::npos)
+        << rb.output;
     // The two points within 3 m (unlabelled) were removed: as the benchmark counts, DA 4 / 5.
     EXPECT_EQ(j2["with_ego_points"]["dynamic_total"].get<int>(), 5);
     EXPECT_DOUBLE_EQ(j2["with_ego_points"]["DA"].get<double>(), 80.0);
@@ -344,6 +351,10 @@ TEST_F(SyntheticPipeline, ThreadsAndHeldScansGiveIdenticalResults)
     r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + b +
                                 " -q --threads 2 --hold-scans --no-png --scene --classes-ply");
     ASSERT_EQ(r.code, 0) << r.output;
+    // The last line says what was written, the files asked for too.
+    EXPECT_NE(r.output.find("predictions/, map.hifmap, classes.ply, map.3Dscene, summary.json"),
+              std::string::npos)
+        << r.output;
     EXPECT_TRUE(fs::exists(a + "/map.png"));
     EXPECT_FALSE(fs::exists(b + "/map.png"));
     EXPECT_FALSE(fs::exists(a + "/map.3Dscene"));

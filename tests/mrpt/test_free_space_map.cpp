@@ -16,9 +16,13 @@
 #include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -194,6 +198,15 @@ TEST(FreeSpaceMap, ASavedMapClassifiesAsTheSavedOneDid)
             }
         EXPECT_EQ(m.log(), "");
         const CHeightIntervalMap loaded = reloaded(*m.map);
+        // And through a file, as hif-clean's map.hifmap.
+        const std::string file =
+            ::testing::TempDir() + "/hif_" + std::to_string(getpid()) + ".hifmap";
+        m.map->saveToFile(file);
+        CHeightIntervalMap from_file;
+        from_file.loadFromFile(file);
+        std::remove(file.c_str());
+        EXPECT_TRUE(from_file.grid() == m.map->grid());
+        EXPECT_TRUE(from_file.freeSpaceTest() == m.map->freeSpaceTest());
         EXPECT_TRUE(loaded.freeSpaceTest() == m.map->freeSpaceTest());
         EXPECT_TRUE(loaded.grid() == m.map->grid());
         EXPECT_FALSE(loaded.freeSpaceTest().empty());
@@ -271,4 +284,33 @@ TEST(FreeSpaceMap, ACorruptImageInASavedMapIsRefused)
     count = 1000;
     std::memcpy(&bad[count_at], &count, 4);
     EXPECT_NE(load(bad).find("more than its options keep"), std::string::npos) << load(bad);
+}
+
+TEST(FreeSpaceMap, LoadFromFileNamesAFileItCannotRead)
+{
+    CHeightIntervalMap map;
+    const std::string missing = ::testing::TempDir() + "/no_such_map.hifmap";
+    try
+    {
+        map.loadFromFile(missing);
+        ADD_FAILURE() << "a missing file loaded";
+    }
+    catch (const std::runtime_error& e)
+    {
+        EXPECT_NE(std::string(e.what()).find(missing), std::string::npos) << e.what();
+    }
+    const std::string junk = ::testing::TempDir() + "/junk_" + std::to_string(getpid()) + ".hifmap";
+    std::ofstream(junk) << "not a map";
+    try
+    {
+        map.loadFromFile(junk);
+        ADD_FAILURE() << "junk loaded";
+    }
+    catch (const std::runtime_error& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("is not a hif map that can be read"),
+                  std::string::npos)
+            << e.what();
+    }
+    std::remove(junk.c_str());
 }

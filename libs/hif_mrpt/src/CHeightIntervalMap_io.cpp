@@ -4,12 +4,14 @@
  * @brief  Serialization of the map (versioned; every version still read), and its text and
  *         .3Dscene representation.
  */
+#include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/io/CFileGZOutputStream.h>
 #include <mrpt/opengl/COpenGLScene.h>
 #include <mrpt/opengl/CSetOfObjects.h>
 #include <mrpt/serialization/CArchive.h>
 #include <algorithm>
 
+#include <filesystem>
 #include <fstream>
 
 #include "hif/CHeightIntervalMap.h"
@@ -300,4 +302,23 @@ void CHeightIntervalMap::saveToFile(const std::string& file) const
     if (!f.open(file, 1)) throw std::runtime_error("Error writing to target file '" + file + "'");
     auto arch = mrpt::serialization::archiveFrom(f);
     arch << *this;
+}
+
+void CHeightIntervalMap::loadFromFile(const std::string& file)
+{
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec))
+        throw std::runtime_error("the hif map file '" + file + "' does not exist or is not a file");
+    try
+    {
+        mrpt::io::CFileGZInputStream f;
+        if (!f.open(file)) throw std::runtime_error("cannot open it");
+        auto arch = mrpt::serialization::archiveFrom(f);
+        arch.ReadObject(this);
+    }
+    catch (const std::exception& e)
+    {
+        throw std::runtime_error(
+            "'" + file + "' is not a hif map that can be read: " + mrpt::exception_to_str(e));
+    }
 }

@@ -164,9 +164,14 @@ public:
      *  z_top p_static) and `<prefix>_3D.3Dscene` (the visualization). */
     void saveMetricMapRepresentationToFile(const std::string& filNamePrefix) const override;
     /** Writes the map MRPT-serialized and gzip-compressed (hif-clean's map.hifmap); read it
-     *  back with mrpt::io::CFileGZInputStream and CArchive::ReadObject(). Throws
+     *  back with loadFromFile(). Throws
      *  std::runtime_error naming the file if it cannot be written. */
     void saveToFile(const std::string& file) const;
+    /** Reads a map that saveToFile() wrote (or any MRPT-serialized hif::CHeightIntervalMap,
+     *  gzip-compressed or not) into this one: its grid, options, sensor model and free-space
+     *  test, as saved. Throws std::runtime_error naming the file if it cannot be read, is
+     *  corrupt or holds something else. */
+    void loadFromFile(const std::string& file);
     /** Writes getVisualizationInto()'s boxes as a scene that MRPT's SceneViewer3D opens. Throws
      *  std::runtime_error naming the file if it cannot be written. */
     void saveSceneToFile(const std::string& file) const;
