@@ -624,16 +624,23 @@ void makeClip(const std::string& seq, const std::string& scene, const std::strin
     ASSERT_EQ(r.code, 0) << r.output;
 }
 
-/** hif-clean with `flags` on the clip in `seq` (into seq/name), scored by hif-eval. */
-json cleanAndScore(const std::string& seq, const std::string& name, const std::string& flags)
+/** hif-clean with `flags` on `input` (into `out`), scored by hif-eval against `labels`: the
+ *  scores' JSON. */
+json cleanAndScoreInput(const std::string& input, const std::string& labels, const std::string& out,
+                        const std::string& flags)
 {
-    const std::string out = seq + "/" + name;
-    const auto c = runApp("hif-clean", "-i " + seq + "/scans.rawlog -o " + out + " -q " + flags);
+    const auto c = runApp("hif-clean", "-i " + input + " -o " + out + " -q " + flags);
     EXPECT_EQ(c.code, 0) << c.output;
-    const auto e = runApp("hif-eval", "--labels " + seq + "/labels --predictions " + out +
-                                          "/predictions --json " + out + "/scores.json");
+    const auto e = runApp("hif-eval", "--labels " + labels + " --predictions " + out +
+                                          "/predictions -q --json " + out + "/scores.json");
     EXPECT_EQ(e.code, 0) << e.output;
     return readJson(out + "/scores.json");
+}
+
+/** cleanAndScoreInput() on the rawlog of the clip in `seq` (into seq/name). */
+json cleanAndScore(const std::string& seq, const std::string& name, const std::string& flags)
+{
+    return cleanAndScoreInput(seq + "/scans.rawlog", seq + "/labels", seq + "/" + name, flags);
 }
 }  // namespace
 
@@ -711,15 +718,10 @@ TEST_P(RealKitti, OfflineCleaningMeetsTheFloors)
     const std::string& w = work.path();
     auto r = runApp("kitti2rawlog", "-i " + dir + " -o " + w + "/scans.rawlog --external");
     ASSERT_EQ(r.code, 0) << r.output;
-    r = runApp("hif-clean", "-i " + w + "/scans.rawlog -o " + w + "/out -q");
-    ASSERT_EQ(r.code, 0) << r.output;
-    r = runApp("hif-eval", "--labels " + dir + "/labels --predictions " + w +
-                               "/out/predictions --json " + w + "/scores.json");
-    ASSERT_EQ(r.code, 0) << r.output;
-    const json scores = readJson(w + "/scores.json");
+    const json scores = cleanAndScoreInput(w + "/scans.rawlog", dir + "/labels", w + "/out", "");
     const json& s = scores["total"];
-    EXPECT_GE(s["SA"].get<double>(), sa_floor) << r.output;
-    EXPECT_GE(s["AA"].get<double>(), aa_floor) << r.output;
+    EXPECT_GE(s["SA"].get<double>(), sa_floor) << s;
+    EXPECT_GE(s["AA"].get<double>(), aa_floor) << s;
     // 04's walking person, 35-43 m away: mostly removed (measured 92 %; 69 % testing points
     // within 40 m only, 5 % without the free-space test).
     if (seq == "04")
@@ -762,14 +764,9 @@ TEST(RealKittiRings, SparserCopiesOf04KeepTheirRingsAndLabelsAndAreCleaned)
             EXPECT_EQ(hif::io::readLabels(sparse.labelFile(i)).size(), sparse.pointCount(i));
             EXPECT_NEAR(double(sparse.pointCount(i)) / double(full.pointCount(i)), 1.0 / k, 0.05);
         }
-        auto r = runApp("hif-clean", "-i " + seq + " -o " + seq + "_out -q --no-png");
-        ASSERT_EQ(r.code, 0) << r.output;
-        r = runApp("hif-eval", "--labels " + seq + "/labels --predictions " + seq +
-                                   "_out/predictions -q --json " + seq + ".json");
-        ASSERT_EQ(r.code, 0) << r.output;
-        const json s = readJson(seq + ".json")["total"];
-        EXPECT_GE(s["SA"].get<double>(), sa_floor) << r.output;
-        EXPECT_GE(s["AA"].get<double>(), aa_floor) << r.output;
+        const json s = cleanAndScoreInput(seq, seq + "/labels", seq + "_out", "--no-png")["total"];
+        EXPECT_GE(s["SA"].get<double>(), sa_floor) << s;
+        EXPECT_GE(s["AA"].get<double>(), aa_floor) << s;
     }
 }
 
@@ -1034,12 +1031,7 @@ TEST(Sensors, EachSensorsClipIsCleanedWithTheDefaults)
             auto r = runApp("hif-synthetic-kitti", "-o " + seq + " -n 10 --seed 1 --scene " +
                                                        scene + " --sensor " + f.sensor);
             ASSERT_EQ(r.code, 0) << r.output;
-            r = runApp("hif-clean", "-i " + seq + " -o " + seq + "/out -q --no-png");
-            ASSERT_EQ(r.code, 0) << r.output;
-            r = runApp("hif-eval", "--labels " + seq + "/labels --predictions " + seq +
-                                       "/out/predictions -q --json " + seq + "/scores.json");
-            ASSERT_EQ(r.code, 0) << r.output;
-            const json s = readJson(seq + "/scores.json");
+            const json s = cleanAndScoreInput(seq, seq + "/labels", seq + "/out", "--no-png");
             const json& total = s["total"];
             if (scene == "street")
             {

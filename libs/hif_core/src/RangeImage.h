@@ -189,11 +189,7 @@ struct BeamGate
             const double dist2 = a.dist2(*layout, row);
             const BeamReturn* line = rowOf(row);
             for (int k = 0; k < a.ncols; ++k)
-            {
-                const double r = line[a.cols[k]].range();
-                if (!std::isfinite(r)) continue;  // no return: no evidence
-                if (r > margin && (r - margin) * (r - margin) > dist2) return true;
-            }
+                if (beamOf(line[a.cols[k]], dist2) == Beam::Passed) return true;
         }
         return false;
     }
@@ -237,10 +233,9 @@ struct BeamGate
             for (int k = 0; k < a.ncols; ++k)
             {
                 const BeamReturn ret = returnAt(line, row, a.cols[k], a, sky);
-                const double r = ret.range();
-                if (!std::isfinite(r)) continue;  // no return: no evidence
-                const double beyond = r - margin, near = r + margin;
-                if (beyond > 0.0 && beyond * beyond > dist2)
+                const Beam beam = beamOf(ret, dist2);
+                if (beam == Beam::None) continue;  // no return: no evidence
+                if (beam == Beam::Passed)
                 {
                     passed_own = passed_own || own;
                     if (core_passed) continue;
@@ -256,7 +251,7 @@ struct BeamGate
                     prev = c;
                     prev_tan = ret.tan();
                 }
-                else if (own && near * near > dist2)
+                else if (own && beam == Beam::Near)
                 {
                     out.clear();  // something is there
                     return;
@@ -368,17 +363,15 @@ private:
             for (int k = 0; k < a.ncols; ++k)
             {
                 const BeamReturn ret = returnAt(line, row, a.cols[k], a, sky);
-                const double r = ret.range();
-                if (!std::isfinite(r)) continue;  // no return: no evidence
-                const double beyond = r - margin, near = r + margin;
-                if (beyond > 0.0 && beyond * beyond > dist2)
+                const Beam beam = beamOf(ret, dist2);
+                if (beam == Beam::Passed)
                 {
                     const Span c = crossedCells(ret.tan(), a);
                     passed = passed || (c.lo < hi && lo < c.hi);
                 }
-                else if (near * near > dist2)
+                else if (beam == Beam::Near)
                     return Crossing::Vetoed;  // something is there
-                else
+                else if (beam == Beam::Front)
                     blocked = true;
             }
         }
@@ -399,11 +392,8 @@ private:
                 const double dist2 = a.dist2(l, row);
                 const BeamReturn* line = rowOf(row);
                 for (int k = 0; k < a.ncols; ++k)
-                {
-                    const double r = returnAt(line, row, a.cols[k], a, sky).range();
-                    if (std::isfinite(r) && r > margin && (r - margin) * (r - margin) > dist2)
+                    if (beamOf(returnAt(line, row, a.cols[k], a, sky), dist2) == Beam::Passed)
                         return true;
-                }
             }
             return false;
         };
@@ -449,13 +439,27 @@ private:
         const double dist2 = a.dist2(*layout, row);
         const BeamReturn* line = rowOf(row);
         for (int k = 0; k < a.ncols; ++k)
-        {
-            const double r = line[a.cols[k]].range();
-            if (!std::isfinite(r)) continue;
-            const double beyond = r - margin, near = r + margin;
-            if (!(beyond > 0.0 && beyond * beyond > dist2) && near * near > dist2) return true;
-        }
+            if (beamOf(line[a.cols[k]], dist2) == Beam::Near) return true;
         return false;
+    }
+
+    /** What a return says of the pillar, `dist2` the squared distance to its axis along the
+     *  return's row: nothing (no return), passed (farther than the pillar by more than the
+     *  margin), near (within the margin of it: something is there), or in front of it. */
+    enum class Beam : uint8_t
+    {
+        None,
+        Passed,
+        Near,
+        Front
+    };
+    [[nodiscard]] Beam beamOf(const BeamReturn& ret, double dist2) const
+    {
+        const double r = ret.range();
+        if (!std::isfinite(r)) return Beam::None;
+        const double beyond = r - margin, near = r + margin;
+        if (beyond > 0.0 && beyond * beyond > dist2) return Beam::Passed;
+        return near * near > dist2 ? Beam::Near : Beam::Front;
     }
 
     /** The cells a beam of elevation tangent `tan_el` crosses within the pillar, [lo, hi)
