@@ -9,6 +9,8 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -30,6 +32,7 @@ struct Registry
     std::size_t next = 0;
     std::string tag;
     bool installed = false;
+    std::atomic<bool> stopping{false};  ///< a stop signal was taken; its thread ends the process
 };
 
 /** Never destroyed: the signal thread may use it while the process exits. */
@@ -75,6 +78,7 @@ bool removeWhileWritten(const std::string& path)
     {
     }
     Registry& r = registry();
+    r.stopping = true;
     std::size_t removed = 0;
     {
         std::lock_guard<std::mutex> lock(r.mutex);
@@ -115,6 +119,12 @@ void removePartialsOnInterrupt(const std::string& tag)
     if (pthread_sigmask(SIG_BLOCK, &set, nullptr) != 0) return;  // the default: stop at once
     std::thread(waitForSignal, set).detach();
     r.installed = true;
+}
+
+void endHereIfStopped()
+{
+    if (!registry().stopping) return;
+    for (;;) std::this_thread::sleep_for(std::chrono::seconds(1));
 }
 
 RemoveOnInterrupt::RemoveOnInterrupt(const std::string& path, bool only_if_empty)

@@ -131,10 +131,13 @@ int cliMain(const char* tag, int argc, char** argv, Run run)
             }
             return 1;
         }
-        return run(cli);
+        const int code = run(cli);
+        if (code != 0) endHereIfStopped();
+        return code;
     }
     catch (const std::exception& e)
     {
+        endHereIfStopped();
         std::cerr << tag << " error: " << errorMessage(e) << "\n";
         return 1;
     }

@@ -18,6 +18,11 @@ namespace hif::apps
  *  Idempotent. */
 void removePartialsOnInterrupt(const std::string& tag);
 
+/** If a stop signal has been taken, waits here for its thread to end the process: an error the
+ *  main thread meets meanwhile (a file it could not open because its folder was just removed)
+ *  comes from the stop, not from the run, and is neither reported nor the exit status. */
+void endHereIfStopped();
+
 /** A path (a partial file or a staging folder) removed if the run is interrupted, for as long
  *  as this object lives. With `only_if_empty`, a folder is removed only when it is empty (an
  *  output folder the run created). */
