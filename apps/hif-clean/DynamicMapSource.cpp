@@ -4,12 +4,10 @@
  * @brief  Scans of a DynamicMap benchmark folder: pcd/NNNNNN.pcd, points in the world frame,
  *         sensor pose in VIEWPOINT.
  */
-#include <algorithm>
-#include <cctype>
 #include <filesystem>
-#include <map>
 #include <stdexcept>
 
+#include "NumberedFiles.h"
 #include "ScanSource.h"
 #include "hif/io/CloudFiles.h"
 
@@ -25,41 +23,18 @@ public:
     explicit DynamicMapSource(const std::string& folder)
     {
         // As strict as the KITTI layout: the scans are the files named by their number
-        // (NNNNNN.pcd); anything else there (a gt_cloud.pcd, results written into the folder)
-        // is named and left out, never read as one more scan.
-        const fs::path pcd = fs::path(folder) / "pcd";
-        std::vector<std::string> other;
-        for (const auto& e : fs::directory_iterator(pcd))
-        {
-            const std::string stem = e.path().stem().string();
-            const bool numbered = !stem.empty() && stem.size() <= 8 &&
-                                  std::all_of(stem.begin(), stem.end(),
-                                              [](unsigned char c) { return std::isdigit(c); });
-            if (e.is_regular_file() && e.path().extension() == ".pcd" && numbered)
-                files_.push_back(e.path().string());
-            else
-                other.push_back(e.path().filename().string());
-        }
-        std::sort(files_.begin(), files_.end());
-        std::sort(other.begin(), other.end());
+        // (NNNNNN.pcd); anything else there is named and left out.
+        const std::string pcd = (fs::path(folder) / "pcd").string();
+        NumberedFiles found = numberedFiles(pcd, {".pcd"});
+        for (auto& [number, file] : found.files) files_.push_back(std::move(file));
         if (files_.empty())
-            throw std::runtime_error("'" + pcd.string() +
-                                     "' has no scan (files named by their number, NNNNNN.pcd)" +
-                                     (other.empty() ? "" : "; it holds " + list(other)));
-        if (!other.empty())
+            throw std::runtime_error(
+                "'" + pcd + "' has no scan (files named by their number, NNNNNN.pcd)" +
+                (found.other.empty() ? "" : "; it holds " + listNames(found.other)));
+        if (!found.other.empty())
             warnings_.push_back(
-                "'" + pcd.string() + "' holds " + std::to_string(other.size()) +
-                " file(s) not named as scans (NNNNNN.pcd), left out: " + list(other));
-        std::map<unsigned long, std::string> numbers;  // 000001.pcd and 1.pcd are one scan
-        for (const std::string& f : files_)
-        {
-            const std::string name = fs::path(f).filename().string();
-            const auto [it, fresh] = numbers.emplace(std::stoul(fs::path(f).stem().string()), name);
-            if (!fresh)
-                throw std::runtime_error("'" + pcd.string() + "' holds two files of scan " +
-                                         std::to_string(it->first) + ": " + it->second + " and " +
-                                         name);
-        }
+                "'" + pcd + "' holds " + std::to_string(found.other.size()) +
+                " file(s) not named as scans (NNNNNN.pcd), left out: " + listNames(found.other));
     }
 
     bool next(Scan& out) override
@@ -88,15 +63,6 @@ public:
     [[nodiscard]] std::vector<std::string> warnings() const override { return warnings_; }
 
 private:
-    /** Up to five names, and how many more. */
-    static std::string list(const std::vector<std::string>& names)
-    {
-        std::string s;
-        for (std::size_t k = 0; k < names.size() && k < 5; ++k) s += (k ? ", " : "") + names[k];
-        if (names.size() > 5) s += " and " + std::to_string(names.size() - 5) + " more";
-        return s;
-    }
-
     std::vector<std::string> warnings_;
     std::vector<std::string> files_;
     std::size_t pos_ = 0;  ///< next file

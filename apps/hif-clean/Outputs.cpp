@@ -62,18 +62,46 @@ void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::ap
         throw std::logic_error("classify() and observationToWorldPoints() disagree on the size");
 
     const auto t1 = Clock::now();
+    const std::size_t frame = frameOf(scan, k);
+    if (scans_written_++ == 0 && scan_numbers_)
+    {
+        // The scan's number, and its time where the input has times (from the first scan on).
+        times_ = scan.obs->timestamp != INVALID_TIMESTAMP;
+        for (hif::io::CloudWriter* w :
+             {&kept_cloud_, &removed_cloud_, classes_ ? &*classes_ : nullptr})
+        {
+            if (!w) continue;
+            hif::io::PointFields f = w->fields();
+            f.scan = true;
+            f.time = times_;
+            w->setFields(f);
+        }
+    }
+    hif::io::CloudPoint p;
+    p.scan = static_cast<uint32_t>(frame);
+    p.time = times_ && scan.obs->timestamp != INVALID_TIMESTAMP
+                 ? mrpt::Clock::toDouble(scan.obs->timestamp)
+                 : std::numeric_limits<double>::quiet_NaN();
     std::vector<uint32_t> labels(dyn.size());
     for (std::size_t i = 0; i < dyn.size(); ++i)
     {
         labels[i] = dyn[i] ? hif::io::kLabelMoving : hif::io::kLabelStatic;
         if (!std::isfinite(x[i]) || !std::isfinite(y[i]) || !std::isfinite(z[i]))
             continue;  // counted as invalid, labelled moving, not written to a cloud
-        (dyn[i] ? removed_cloud_ : kept_cloud_).add(x[i], y[i], z[i], intensity[i]);
+        p.x = x[i];
+        p.y = y[i];
+        p.z = z[i];
+        p.intensity = intensity[i];
+        (dyn[i] ? removed_cloud_ : kept_cloud_).add(p);
         if (classes_)
         {
             const uint8_t* c = hif::apps::TopView::kRgb[dyn[i] ? hif::apps::TopView::kRemoved
                                                                : hif::apps::TopView::kKept];
-            classes_->add(x[i], y[i], z[i], c[0], c[1], c[2]);
+            p.red = c[0];
+            p.green = c[1];
+            p.blue = c[2];
+            p.label = dyn[i] ? 1 : 0;
+            classes_->add(p);
         }
     }
     if (rawlog_) rawlog_->write(scan, dyn);
@@ -81,15 +109,6 @@ void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::ap
         for (std::size_t i = 0; i < dyn.size(); ++i)
             view_->add(x[i], y[i], static_cast<float>(z[i]),
                        dyn[i] ? hif::apps::TopView::kRemoved : hif::apps::TopView::kKept);
-    std::size_t frame = first_frame_.value_or(0) + k;
-    if (scan.frame)
-    {
-        if (k == 0 && first_frame_ && *first_frame_ != *scan.frame)
-            throw std::runtime_error("--first-frame " + std::to_string(*first_frame_) +
-                                     " disagrees with the input, whose first scan is frame " +
-                                     std::to_string(*scan.frame) + " (leave --first-frame out)");
-        frame = *scan.frame;
-    }
     if (frame < written_.size() && written_[frame])
         throw std::runtime_error("two scans of the input are frame " + std::to_string(frame));
     if (frame >= written_.size()) written_.resize(frame + 1, false);
@@ -102,6 +121,16 @@ void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::ap
     points_invalid += st.invalid_points;
     points_near += st.near_points;
     points_seen_through += st.seen_through_points;
+}
+
+std::size_t Outputs::frameOf(const hif::apps::Scan& scan, std::size_t k) const
+{
+    if (!scan.frame) return first_frame_.value_or(0) + k;
+    if (k == 0 && first_frame_ && *first_frame_ != *scan.frame)
+        throw std::runtime_error("--first-frame " + std::to_string(*first_frame_) +
+                                 " disagrees with the input, whose first scan is frame " +
+                                 std::to_string(*scan.frame) + " (leave --first-frame out)");
+    return *scan.frame;
 }
 
 void Outputs::pictureCovers(const hif::CHeightIntervalMap& map)

@@ -54,12 +54,17 @@ public:
     /** Before the first scan is classified: about how many points the kept cloud will get (a
      *  guess: right to the number of digits, it saves a copy of that file). */
     void expectKept(std::size_t points) { kept_cloud_.expectCount(points); }
-    /** Also writes every point, coloured by its class (TopView::kRgb: kept light grey,
-     *  removed red), to `file`, a PLY. */
+    /** Also writes every point to `file`, a PLY: x y z, intensity, a colour by its class
+     *  (TopView::kRgb: kept light grey, removed red) and the class (0 kept, 1 removed). */
     void writeClasses(const std::string& file)
     {
-        classes_.emplace(std::vector<std::string>{file}, hif::io::CloudWriter::Record::XyzRgb);
+        hif::io::PointFields f;
+        f.colour = f.label = true;
+        classes_.emplace(std::vector<std::string>{file}, f);
     }
+    /** Before the first scan: every cloud also gets each point's scan number (the number of
+     *  its predictions file) and, if the first scan has a time stamp, its scan's time. */
+    void writeScanNumbers() { scan_numbers_ = true; }
     /** Also writes every scan without its dynamic points to `file`, an MRPT rawlog (the one
      *  the user named `name`). */
     void writeRawlog(const std::string& file, const std::string& name)
@@ -92,6 +97,9 @@ public:
     double write_ms_total = 0;
 
 private:
+    /** The number of scan `k` (its predictions file's): the input's, else first_frame + k. */
+    [[nodiscard]] std::size_t frameOf(const hif::apps::Scan& scan, std::size_t k) const;
+
     hif::io::CloudWriter kept_cloud_, removed_cloud_;
     std::string pred_dir_;
     std::optional<std::size_t> first_frame_;
@@ -101,4 +109,7 @@ private:
     std::optional<hif::apps::TopView> view_;
     std::optional<RawlogOut> rawlog_;
     std::optional<hif::io::CloudWriter> classes_;
+    bool scan_numbers_ = false;
+    bool times_ = false;  ///< with scan_numbers_: the scans' times too
+    std::size_t scans_written_ = 0;
 };

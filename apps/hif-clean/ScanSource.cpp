@@ -29,30 +29,68 @@ bool isScan(const mrpt::obs::CObservation& obs)
 
 namespace
 {
-std::unique_ptr<ScanSource> openSource(const std::string& path, bool poses_required)
+/** Which inputs hif-clean reads, for messages about the others. */
+const char* const kInputsRead =
+    "hif-clean reads a sequence of scans with their poses: a KITTI sequence folder "
+    "(velodyne/), a DynamicMap benchmark folder (pcd/), a folder of clouds in the sensor frame "
+    "(NNNNNN.pcd or .ply) with poses.txt (KITTI or TUM format; or --poses FILE), an MRPT rawlog "
+    "or a .simplemap";
+
+/** The poses of a folder of clouds: `poses` when given, else its poses.txt; empty if neither. */
+std::string posesOf(const fs::path& folder, const std::string& poses)
 {
-    if (fs::is_directory(path))
+    if (!poses.empty()) return poses;
+    return fs::is_regular_file(folder / "poses.txt") ? (folder / "poses.txt").string() : "";
+}
+
+std::unique_ptr<ScanSource> openSource(const std::string& path, bool poses_required,
+                                       const std::string& poses)
+{
+    const fs::path p(path);
+    if (fs::is_directory(p))
     {
-        if (fs::is_directory(fs::path(path) / "velodyne")) return openKittiFolder(path);
-        if (fs::is_directory(fs::path(path) / "pcd")) return openDynamicMapFolder(path);
+        const bool kitti = fs::is_directory(p / "velodyne"),
+                   dynamicmap = fs::is_directory(p / "pcd");
+        if (!poses.empty() && (kitti || dynamicmap))
+            throw std::runtime_error("--poses is for a folder of clouds; '" + path + "' is a " +
+                                     (kitti ? "KITTI sequence" : "DynamicMap benchmark") +
+                                     " folder, which holds its own poses");
+        if (kitti) return openKittiFolder(path);
+        if (dynamicmap) return openDynamicMapFolder(path);
+        const std::string trajectory = posesOf(p, poses);
+        if (!trajectory.empty()) return openScansWithPoses(path, trajectory);
         throw std::runtime_error("'" + path +
-                                 "' is a folder with neither velodyne/ (a KITTI sequence) nor "
-                                 "pcd/ (a DynamicMap benchmark folder); hif-clean reads those, "
-                                 "a rawlog or a .simplemap");
+                                 "' is a folder with neither velodyne/, pcd/ nor poses.txt; " +
+                                 kInputsRead);
     }
-    if (!fs::exists(path)) throw std::runtime_error("input '" + path + "' does not exist");
-    if (fs::path(path).extension() == ".simplemap") return openSimpleMap(path);
+    if (!fs::exists(p)) throw std::runtime_error("input '" + path + "' does not exist");
+    if (!poses.empty())
+        throw std::runtime_error("--poses goes with a folder of clouds, and '" + path +
+                                 "' is a file");
+    const std::string ext = p.extension().string();
+    if (ext == ".pcd" || ext == ".ply" || ext == ".bin" || ext == ".las" || ext == ".laz")
+        throw std::runtime_error("'" + path + "' is one point cloud (" + ext.substr(1) +
+                                 "), without a pose: moving objects are found by comparing "
+                                 "scans taken at known poses. " +
+                                 kInputsRead);
+    if (ext == ".simplemap") return openSimpleMap(path);
     return openRawlog(path, poses_required);
 }
 }  // namespace
 
-void describeInputs(const std::string& path, RunFiles& files)
+void describeInputs(const std::string& path, RunFiles& files, const std::string& poses)
 {
     const fs::path p(path);
     if (fs::is_directory(p / "velodyne"))
         files.inputKittiSequence(path, "-i");
     else if (fs::is_directory(p / "pcd"))
         files.inputFolder((p / "pcd").string(), ".pcd", "the scans of -i");
+    else if (fs::is_directory(p) && !posesOf(p, poses).empty())
+    {
+        files.inputFolder(path, ".pcd", "the scans of -i");
+        files.inputFolder(path, ".ply", "the scans of -i");
+        files.input(posesOf(p, poses), "the poses of -i");
+    }
     else
         files.input(path, "the input (-i)");
 }
@@ -95,9 +133,9 @@ void checkExternalPoints(const mrpt::obs::CObservation& obs, const std::string& 
 }
 
 std::unique_ptr<ScanSource> openScanSource(const std::string& path, PrepareScan prepare,
-                                           bool poses_required)
+                                           bool poses_required, const std::string& poses)
 {
-    return readingAhead(openSource(path, poses_required), std::move(prepare));
+    return readingAhead(openSource(path, poses_required, poses), std::move(prepare));
 }
 
 mrpt::obs::CObservation::Ptr pointCloudObservation(const io::Cloud& cloud)

@@ -4,8 +4,10 @@
  * @brief  hif-clean's inputs, read one scan at a time behind one interface: an MRPT rawlog
  *         (a CObservationRobotPose before each scan, as kitti2rawlog writes; observations or
  *         sensory frames), a .simplemap, a KITTI sequence folder (velodyne/, poses.txt,
- *         calib.txt), or a DynamicMap benchmark folder (pcd/NNNNNN.pcd in the world frame,
- *         sensor pose in VIEWPOINT).
+ *         calib.txt), a DynamicMap benchmark folder (pcd/NNNNNN.pcd in the world frame,
+ *         sensor pose in VIEWPOINT), or a folder of clouds in the sensor frame (NNNNNN.pcd or
+ *         .ply) with their poses (poses.txt, KITTI or TUM format), as LiDAR SLAM systems
+ *         write them.
  */
 #pragma once
 
@@ -59,9 +61,10 @@ public:
     [[nodiscard]] virtual std::vector<std::string> warnings() const { return {}; }
 };
 
-/** Adds to `files` what reading `path` reads (see openScanSource()): a rawlog or simple map
- *  file, a KITTI folder's files, or a DynamicMap folder's scans. */
-void describeInputs(const std::string& path, RunFiles& files);
+/** Adds to `files` what reading `path` (with `poses`, see openScanSource()) reads: a rawlog or
+ *  simple map file, a KITTI folder's files, a DynamicMap folder's scans, or a folder's clouds and
+ *  its poses. */
+void describeInputs(const std::string& path, RunFiles& files, const std::string& poses = "");
 
 /** Throws std::runtime_error naming `where` and the file if `obs` keeps its points in an
  *  external file (MRPT lazy load) that is missing, not a file, or (a KITTI .bin) empty or not a
@@ -69,11 +72,14 @@ void describeInputs(const std::string& path, RunFiles& files);
 void checkExternalPoints(const mrpt::obs::CObservation& obs, const std::string& where);
 
 /** Opens `path`: a folder with velodyne/ is a KITTI sequence, a folder with pcd/ a DynamicMap
- *  folder, a *.simplemap file a simple map, anything else a rawlog (plain or gzip). The source
- *  reads one scan ahead on a second thread, and there calls `prepare` (if set) on it. Throws
+ *  folder, a folder with poses.txt (or any folder, with `poses` naming its trajectory file)
+ *  clouds with poses, a *.simplemap file a simple map, a single cloud (.pcd, .ply, .bin, .las)
+ *  an error that says what is read, anything else a rawlog (plain or gzip). The source reads
+ *  one scan ahead on a second thread, and there calls `prepare` (if set) on it. Throws
  *  std::runtime_error naming it. */
 std::unique_ptr<ScanSource> openScanSource(const std::string& path, PrepareScan prepare = {},
-                                           bool poses_required = true);
+                                           bool poses_required = true,
+                                           const std::string& poses = "");
 
 /** With `poses_required` false, a scan without a CObservationRobotPose before it is handed out
  *  with has_pose false instead of being an error (SLAM estimates its own poses). */
@@ -81,6 +87,11 @@ std::unique_ptr<ScanSource> openRawlog(const std::string& file, bool poses_requi
 std::unique_ptr<ScanSource> openSimpleMap(const std::string& file);
 std::unique_ptr<ScanSource> openDynamicMapFolder(const std::string& folder);
 std::unique_ptr<ScanSource> openKittiFolder(const std::string& folder);
+/** Clouds in the sensor frame, NNNNNN.pcd or NNNNNN.ply in `folder`, at the poses of
+ *  `poses_file` (hif::io::readTrajectory()): the k-th scan (by number) takes the k-th pose when
+ *  the counts agree, else scan NNNNNN takes pose NNNNNN (a trajectory longer than the folder). */
+std::unique_ptr<ScanSource> openScansWithPoses(const std::string& folder,
+                                               const std::string& poses_file);
 /** `source`, its next scan read (and given to `prepare`, if set) on a second thread while the
  *  caller works on the current one. */
 std::unique_ptr<ScanSource> readingAhead(std::unique_ptr<ScanSource> source,

@@ -6,6 +6,7 @@
 #include "Summary.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -83,6 +84,20 @@ void writeSummary(const std::string& file, const SummaryInfo& info,
     }
     else
         j["sensor"] = nullptr;
+    if (info.poses && info.poses->pairs() > 0)
+    {
+        // NaN (no pair with enough points above the sensor) is written as null.
+        const auto number = [](double v)
+        { return std::isnan(v) ? nlohmann::json() : nlohmann::json(v); };
+        j["poses_check"] = {
+            {"pairs", info.poses->pairs()},
+            {"overlap", info.poses->medianOverlap()},
+            {"overlap_above_sensor", number(info.poses->medianAbove())},
+            {"overlap_above_sensor_without_motion", number(info.poses->medianAboveNoMotion())},
+            {"doubted", info.poses_doubted}};
+    }
+    else
+        j["poses_check"] = nullptr;
     nlohmann::ordered_json pj;
     addFields(pj, map.geometry());
     addFields(pj, map.params());

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "Outputs.h"
+#include "PoseCheck.h"
 
 /** Where the map's sensor model came from and which later scans contradicted it. */
 struct SensorReport
@@ -27,6 +28,8 @@ struct SummaryInfo
     std::size_t skipped_objects = 0;
     std::optional<hif::apps::TopView::Picture> picture;  ///< map.png, if drawn
     SensorReport sensor;
+    const hif::apps::PoseCheck* poses = nullptr;  ///< the check of the poses, if run
+    bool poses_doubted = false;                   ///< it warned
 };
 
 /** summary.json: counts, map size, timings and every parameter of the map. */

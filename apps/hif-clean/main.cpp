@@ -22,6 +22,7 @@
 #include <sstream>
 
 #include "Outputs.h"
+#include "PoseCheck.h"
 #include "ScanSource.h"
 #include "Summary.h"
 #include "hif/CHeightIntervalMap.h"
@@ -59,10 +60,22 @@ struct Cli
         "input",
         "Input: an MRPT rawlog with a CObservationRobotPose before each scan (as kitti2rawlog "
         "writes), a .simplemap, a KITTI sequence folder (velodyne/, poses.txt, calib.txt; "
-        "SemanticKITTI layout), or a DynamicMap benchmark folder (pcd/NNNNNN.pcd)",
+        "SemanticKITTI layout), a DynamicMap benchmark folder (pcd/NNNNNN.pcd), or a folder of "
+        "clouds in the sensor frame (NNNNNN.pcd or NNNNNN.ply) with poses.txt (the sensor's "
+        "pose in the world for each, KITTI or TUM format), as LiDAR SLAM systems write them",
         true,
         "",
         "in.rawlog|in.simplemap|folder",
+        cmd};
+    TCLAP::ValueArg<std::string> poses{
+        "",
+        "poses",
+        "The trajectory of a folder of clouds (-i), when it is not the folder's poses.txt: "
+        "one line per cloud, the sensor's pose in the world, KITTI format (a 3x4 matrix, 12 "
+        "numbers) or TUM format (time x y z qx qy qz qw); e.g. KISS-ICP's *_poses_kitti.txt",
+        false,
+        "",
+        "poses.txt",
         cmd};
     TCLAP::ValueArg<std::string> output{
         "o", "output", "Output folder (created if needed)", true, "", "folder", cmd};
@@ -103,8 +116,15 @@ struct Cli
         cmd};
     TCLAP::SwitchArg classes_ply{
         "", "classes-ply",
-        "Also write classes.ply: every point (world frame) coloured by its class, kept light "
-        "grey, removed red",
+        "Also write classes.ply: every point (world frame) with its intensity, a colour by its "
+        "class (kept light grey, removed red) and its class (uchar class: 0 kept, 1 removed)",
+        cmd};
+    TCLAP::SwitchArg scan_numbers{
+        "", "scan-numbers",
+        "Give every point of the clouds (static_map, removed, classes.ply) the number of its scan "
+        "(uint scan, as its predictions file) and, where the input has times (KITTI times.txt, "
+        "rawlog time stamps, a TUM trajectory), its scan's time (double time, seconds): for "
+        "re-projecting the kept points or running again on a part",
         cmd};
     TCLAP::SwitchArg scene{"", "scene",
                            "Also write map.3Dscene: the HIF map's intervals as boxes coloured "
@@ -153,7 +173,7 @@ struct Cli
 /** What a run works with: its input, its maps and where its results go. */
 struct Run
 {
-    std::string input, out_dir, cfg_file, section;
+    std::string input, poses, out_dir, cfg_file, section;
     bool online = false, hold_scans = false, show_progress = true;
     std::unique_ptr<hif::apps::ScanSource> source;
     std::string dm_output;  ///< <folder>/hif_output.pcd for a DynamicMap folder, else empty
@@ -164,6 +184,8 @@ struct Run
     mrpt::maps::CMultiMetricMap maps;
     hif::CHeightIntervalMap::Ptr hif_map;
     SensorReport sensor;  ///< the sensor model: where it came from, what contradicted it
+    hif::apps::PoseCheck pose_check;  ///< whether the poses align the first scans
+    bool poses_doubted = false;
 };
 
 /** What hif-clean writes into its output folder (and replaces, with --overwrite). */
@@ -185,7 +207,8 @@ void setUp(Cli& cli, Run& run)
         throw std::runtime_error("--hold-scans applies to offline mode only (not --online)");
     if (cli.threads.isSet()) hif::apps::flagInRange(cli.threads.getValue(), "--threads", 1, 1024);
 
-    run.source = hif::apps::openScanSource(run.input);
+    run.poses = cli.poses.getValue();
+    run.source = hif::apps::openScanSource(run.input, {}, true, run.poses);
     run.cfg_file = cli.config.isSet() ? cli.config.getValue()
                                       : defaultConfig(run.online, run.source->isDynamicMapFolder());
     hif::apps::checkConfigFile(run.cfg_file);
@@ -194,7 +217,7 @@ void setUp(Cli& cli, Run& run)
 
     // No output may be an input or another output of this run, with or without --overwrite.
     hif::apps::RunFiles files;
-    hif::apps::describeInputs(run.input, files);
+    hif::apps::describeInputs(run.input, files, run.poses);
     files.input(run.cfg_file, "the config");
     for (const std::string& n : kOutputNames)
         files.output(run.out_dir + "/" + n, "the " + n + " of -o", n == "predictions");
@@ -242,7 +265,8 @@ void setUp(Cli& cli, Run& run)
 
 void printHeader(const Run& run)
 {
-    std::cout << kTag << " input  : " << run.input << "\n"
+    std::cout << kTag << " input  : " << run.input
+              << (run.poses.empty() ? "" : " at the poses of " + run.poses) << "\n"
               << kTag << " config : " << run.cfg_file << " [" << run.section << "], "
               << run.maps.maps.size() << " map(s)\n"
               << kTag << " mode   : "
@@ -336,6 +360,12 @@ std::vector<hif::apps::Scan> insertAll(Run& run, Outputs& out, Timings& t)
         const double ms = msSince(t0);
         checkInsideGrid(run, t.scans);
         reportSensor(run, t.scans);
+        if (!run.pose_check.done())
+            if (const auto doubt = run.pose_check.add(scan))
+            {
+                std::cout << kTag << " warning: " << *doubt << std::endl;
+                run.poses_doubted = true;
+            }
         t.insert_ms.push_back(ms);
         t.points += pointsOf(*scan.obs);
         if (run.online)
@@ -419,6 +449,7 @@ int runClean(Cli& cli)
     if (!cli.no_png.getValue()) out.drawPicture();
     if (run.staged_rawlog) out.writeRawlog(run.staged_rawlog->path(), cli.rawlog_out.getValue());
     if (cli.classes_ply.getValue()) out.writeClasses(dir + "/classes.ply");
+    if (cli.scan_numbers.getValue()) out.writeScanNumbers();
     Timings t;
     t.setup_s = msSince(t_start) / 1000.0;
     auto t_pass = Clock::now();
@@ -449,8 +480,8 @@ int runClean(Cli& cli)
     t.total_s = msSince(t_start) / 1000.0;
 
     SummaryInfo info{
-        run.input, run.cfg_file, run.online, run.hold_scans, run.source->skippedObjects(),
-        picture,   run.sensor};
+        run.input, run.cfg_file, run.online,      run.hold_scans,   run.source->skippedObjects(),
+        picture,   run.sensor,   &run.pose_check, run.poses_doubted};
     writeSummary(dir + "/summary.json", info, *run.hif_map, out, t);
     run.staged->commit();
     if (run.staged_dm) run.staged_dm->commit();

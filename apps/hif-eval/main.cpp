@@ -270,7 +270,7 @@ int run(Cli& cli)
     if (png_file) view.emplace();
     if (ply_file)
         outcome_cloud.emplace(std::vector<std::string>{ply_file->path()},
-                              hif::io::CloudWriter::Record::XyzRgb);
+                              hif::io::PointFields::colourOnly());
     hif::io::Breakdown total;
     hif::io::Scores with_ego;  ///< the DynamicMap benchmark's way (needs ranges)
     std::size_t without_truth = 0, scored = 0;

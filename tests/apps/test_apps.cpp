@@ -25,6 +25,7 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -67,6 +68,33 @@ std::map<uint32_t, std::size_t> coloursOf(const std::string& file)
     for (char rec[15]; f.read(rec, 15);)
         ++n[(uint32_t(uint8_t(rec[12])) << 16) | (uint32_t(uint8_t(rec[13])) << 8) |
             uint8_t(rec[14])];
+    return n;
+}
+
+/** classes.ply's points (x y z intensity, float32; red green blue class, uchar) counted by
+ *  (colour, class), and the sum of their intensities. */
+std::map<std::pair<uint32_t, int>, std::size_t> classesOf(const std::string& file,
+                                                          double& intensity_sum)
+{
+    std::ifstream f(file, std::ios::binary);
+    EXPECT_TRUE(f.good()) << file;
+    std::string header;
+    for (std::string line; std::getline(f, line) && line != "end_header";) header += line + "\n";
+    EXPECT_NE(header.find("property float intensity\nproperty uchar red\nproperty uchar green\n"
+                          "property uchar blue\nproperty uchar class\n"),
+              std::string::npos)
+        << header;
+    std::map<std::pair<uint32_t, int>, std::size_t> n;
+    intensity_sum = 0;
+    for (char rec[20]; f.read(rec, 20);)
+    {
+        float i = 0;
+        std::memcpy(&i, rec + 12, 4);
+        intensity_sum += i;
+        ++n[{(uint32_t(uint8_t(rec[16])) << 16) | (uint32_t(uint8_t(rec[17])) << 8) |
+                 uint8_t(rec[18]),
+             int(rec[19])}];
+    }
     return n;
 }
 
@@ -361,12 +389,26 @@ TEST_F(SyntheticPipeline, ThreadsAndHeldScansGiveIdenticalResults)
     mrpt::opengl::COpenGLScene scene;
     ASSERT_TRUE(scene.loadFromFile(b + "/map.3Dscene"));
     EXPECT_TRUE(scene.getByName("hif::CHeightIntervalMap"));
-    // Every point, coloured by its class.
+    // Every point with its intensity, its class (0 kept, 1 removed) and its class's colour.
     const json sb0 = readJson(b + "/summary.json");
-    const auto colours = coloursOf(b + "/classes.ply");
-    EXPECT_EQ(colours.at(packed(hif::apps::TopView::kRemoved)),
+    double intensities = 0;
+    const auto classes = classesOf(b + "/classes.ply", intensities);
+    EXPECT_EQ(classes.size(), 2u);
+    EXPECT_EQ(classes.at({packed(hif::apps::TopView::kRemoved), 1}),
               sb0["points_removed"].get<std::size_t>() - sb0["points_invalid"].get<std::size_t>());
-    EXPECT_EQ(colours.at(packed(hif::apps::TopView::kKept)), sb0["points_kept"].get<std::size_t>());
+    EXPECT_EQ(classes.at({packed(hif::apps::TopView::kKept), 0}),
+              sb0["points_kept"].get<std::size_t>());
+    double kept_and_removed = 0;
+    for (const char* cloud : {"/static_map.ply", "/removed.ply"})
+    {
+        std::ifstream f(b + cloud, std::ios::binary);
+        for (std::string line; std::getline(f, line) && line != "end_header";)
+        {
+        }
+        for (float rec[4]; f.read(reinterpret_cast<char*>(rec), 16);) kept_and_removed += rec[3];
+    }
+    EXPECT_GT(intensities, 0.0);
+    EXPECT_NEAR(intensities, kept_and_removed, 1e-9 * kept_and_removed);
     auto bytes = [](const std::string& file)
     {
         std::ifstream in(file, std::ios::binary);
@@ -558,7 +600,7 @@ TEST_F(SyntheticPipeline, KittiAndDynamicMapFoldersGiveTheRawlogsResult)
     // A folder that is neither layout is named as such; a bad --format is refused.
     fs::create_directories(root_ + "/neither");
     r = runApp("hif-clean", "-i " + root_ + "/neither -o " + root_ + "/neither/out");
-    expectError(r, "neither velodyne/ (a KITTI sequence) nor pcd/");
+    expectError(r, "is a folder with neither velodyne/, pcd/ nor poses.txt");
     r = runApp("hif-clean", "-i " + root_ + "/seq -o " + root_ + "/bad_format --format las");
     expectError(r, "--format");
     EXPECT_FALSE(fs::exists(root_ + "/bad_format"));

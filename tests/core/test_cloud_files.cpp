@@ -146,7 +146,7 @@ TEST(CloudWriter, ColouredPointsMakeAColouredPly)
     {
         const std::vector<std::string> files{d + "/a.ply", d + "/b.ply"};
         {
-            hif::io::CloudWriter w(files, hif::io::CloudWriter::Record::XyzRgb);
+            hif::io::CloudWriter w(files, hif::io::PointFields::colourOnly());
             if (expected) w.expectCount(*expected);
             w.add(1.5f, -2.0f, 0.25f, 255, 0, 7);
             w.add(0.0f, 3.0f, -1.0f, 1, 2, 3);
@@ -170,6 +170,6 @@ TEST(CloudWriter, ColouredPointsMakeAColouredPly)
             body;
         for (const std::string& f : files) EXPECT_EQ(bytesOf(f), ref) << f;
     }
-    EXPECT_THROW(hif::io::CloudWriter({d + "/c.pcd"}, hif::io::CloudWriter::Record::XyzRgb),
+    EXPECT_THROW(hif::io::CloudWriter({d + "/c.pcd"}, hif::io::PointFields::colourOnly()),
                  std::runtime_error);
 }

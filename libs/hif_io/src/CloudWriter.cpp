@@ -99,18 +99,25 @@ void writeHeaderAndCopy(const std::string& file, const std::string& header, cons
 }
 }  // namespace
 
-CloudWriter::CloudWriter(std::vector<std::string> files, Record record)
-    : files_(std::move(files)), record_(record)
+CloudWriter::CloudWriter(std::vector<std::string> files, PointFields fields)
+    : files_(std::move(files))
 {
     if (files_.empty()) throw std::invalid_argument("CloudWriter: no output file");
     for (const std::string& file : files_)
-    {
         if (!endsWith(file, ".pcd") && !endsWith(file, ".ply"))
             throwFileError(file, "has an unknown point-cloud extension (use .ply or .pcd)");
-        if (record_ == Record::XyzRgb && !endsWith(file, ".ply"))
-            throwFileError(file, "cannot hold coloured points (write a .ply)");
-    }
+    setFields(fields);
     buf_.resize(std::size_t{1} << 17);
+}
+
+void CloudWriter::setFields(const PointFields& fields)
+{
+    if (count_ > 0 || closed_)
+        throw std::logic_error("CloudWriter::setFields() after the first point");
+    for (const std::string& file : files_)
+        if (fields.colour && !endsWith(file, ".ply"))
+            throwFileError(file, "cannot hold coloured points (write a .ply)");
+    fields_ = fields;
 }
 
 CloudWriter::~CloudWriter()
@@ -169,28 +176,44 @@ std::string CloudWriter::viewpointText() const
     return s.str();
 }
 
-std::size_t CloudWriter::recordBytes() const
-{
-    const std::size_t xyz = double_ ? 24 : 12;
-    return xyz + (record_ == Record::XyzRgb ? 3 : 4);
-}
+std::size_t CloudWriter::recordBytes() const { return (double_ ? 24 : 12) + fields_.tailBytes(); }
 
 std::string CloudWriter::header(const std::string& file, std::size_t count) const
 {
     const std::string n = std::to_string(count);
     const std::string ply_type = double_ ? "double" : "float";
+    // The fields after x y z: (PLY type, name, PCD size, PCD type).
+    struct Field
+    {
+        const char *ply, *name, *size, *type;
+    };
+    std::vector<Field> tail;
+    if (fields_.intensity) tail.push_back({"float", "intensity", "4", "F"});
+    if (fields_.colour)
+        for (const char* c : {"red", "green", "blue"}) tail.push_back({"uchar", c, "1", "U"});
+    if (fields_.label) tail.push_back({"uchar", "class", "1", "U"});
+    if (fields_.scan) tail.push_back({"uint", "scan", "4", "U"});
+    if (fields_.time) tail.push_back({"double", "time", "8", "F"});
     if (endsWith(file, ".ply"))
-        return "ply\nformat binary_little_endian 1.0\ncomment written by hif\nelement vertex " + n +
-               "\nproperty " + ply_type + " x\nproperty " + ply_type + " y\nproperty " + ply_type +
-               " z\n" +
-               (record_ == Record::XyzRgb
-                    ? "property uchar red\nproperty uchar green\nproperty uchar blue\n"
-                    : "property float intensity\n") +
-               "end_header\n";
-    return std::string(
-               "# .PCD v0.7 - Point Cloud Data file format (written by hif)\nVERSION 0.7\n"
-               "FIELDS x y z intensity\nSIZE ") +
-           (double_ ? "8 8 8 4" : "4 4 4 4") + "\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH " + n +
+    {
+        std::string h =
+            "ply\nformat binary_little_endian 1.0\ncomment written by hif\nelement vertex " + n +
+            "\nproperty " + ply_type + " x\nproperty " + ply_type + " y\nproperty " + ply_type +
+            " z\n";
+        for (const Field& f : tail) h += std::string("property ") + f.ply + " " + f.name + "\n";
+        return h + "end_header\n";
+    }
+    std::string names = "x y z", sizes = double_ ? "8 8 8" : "4 4 4", types = "F F F",
+                counts = "1 1 1";
+    for (const Field& f : tail)
+    {
+        names += std::string(" ") + f.name;
+        sizes += std::string(" ") + f.size;
+        types += std::string(" ") + f.type;
+        counts += " 1";
+    }
+    return "# .PCD v0.7 - Point Cloud Data file format (written by hif)\nVERSION 0.7\nFIELDS " +
+           names + "\nSIZE " + sizes + "\nTYPE " + types + "\nCOUNT " + counts + "\nWIDTH " + n +
            "\nHEIGHT 1\nVIEWPOINT " + viewpointText() + "\nPOINTS " + n + "\nDATA binary\n";
 }
 
@@ -214,7 +237,7 @@ void CloudWriter::promote()
     }
     else
         old.assign(buf_.begin(), buf_.begin() + static_cast<std::ptrdiff_t>(used_));
-    const std::size_t n = count_, rest = record_ == Record::XyzRgb ? 3 : 4;
+    const std::size_t n = count_, rest = fields_.tailBytes();
     const std::size_t from = 12 + rest;
     double_ = true;
     count_ = 0;
@@ -223,7 +246,7 @@ void CloudWriter::promote()
     {
         float xyz[3];
         std::memcpy(xyz, old.data() + k * from, 12);
-        char v[28];
+        char v[24 + kMaxTail];
         const double wide[3] = {xyz[0], xyz[1], xyz[2]};
         std::memcpy(v, wide, 24);
         std::memcpy(v + 24, old.data() + k * from + 12, rest);

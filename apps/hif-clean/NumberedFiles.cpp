@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   NumberedFiles.cpp
+ * @brief  A folder's files named by their number.
+ */
+#include "NumberedFiles.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <stdexcept>
+
+namespace fs = std::filesystem;
+
+namespace hif::apps
+{
+NumberedFiles numberedFiles(const std::string& folder, const std::vector<std::string>& extensions)
+{
+    NumberedFiles out;
+    for (const auto& e : fs::directory_iterator(folder))
+    {
+        const std::string stem = e.path().stem().string();
+        const bool numbered =
+            !stem.empty() && stem.size() <= 8 &&
+            std::all_of(stem.begin(), stem.end(), [](unsigned char c) { return std::isdigit(c); });
+        const std::string ext = e.path().extension().string();
+        if (e.is_regular_file() && numbered &&
+            std::find(extensions.begin(), extensions.end(), ext) != extensions.end())
+            out.files.emplace_back(std::stoul(stem), e.path().string());
+        else
+            out.other.push_back(e.path().filename().string());
+    }
+    std::sort(out.files.begin(), out.files.end());
+    std::sort(out.other.begin(), out.other.end());
+    for (std::size_t k = 1; k < out.files.size(); ++k)
+        if (out.files[k].first == out.files[k - 1].first)
+            throw std::runtime_error("'" + folder + "' holds two files of scan " +
+                                     std::to_string(out.files[k].first) + ": " +
+                                     fs::path(out.files[k - 1].second).filename().string() +
+                                     " and " + fs::path(out.files[k].second).filename().string());
+    return out;
+}
+
+std::string listNames(const std::vector<std::string>& names)
+{
+    std::string s;
+    for (std::size_t k = 0; k < names.size() && k < 5; ++k) s += (k ? ", " : "") + names[k];
+    if (names.size() > 5) s += " and " + std::to_string(names.size() - 5) + " more";
+    return s;
+}
+
+}  // namespace hif::apps

@@ -1,0 +1,261 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   test_slam_folders.cpp
+ * @brief  The inputs LiDAR SLAM systems write: a folder of per-scan clouds in the sensor frame
+ *         (.pcd or .ply) with a KITTI- or TUM-format trajectory give the KITTI folder's classes;
+ *         poses that do not belong to the scans are warned about; a single cloud is named.
+ */
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+
+#include "app_runner.h"
+#include "hif/io/CloudFiles.h"
+#include "hif/io/KittiSequence.h"
+#include "hif/io/Labels.h"
+#include "kitti_fixture.h"
+
+namespace fs = std::filesystem;
+using hif::test::expectError;
+using hif::test::readJson;
+using hif::test::Result;
+using hif::test::runApp;
+using hif::test::WorkDir;
+using hif::test::workDir;
+
+namespace
+{
+/** Writes each scan of `seq` in its sensor frame to `dir`/NNNNNN`ext`. */
+void writeScans(const hif::io::KittiSequence& seq, const std::string& dir, const std::string& ext)
+{
+    fs::create_directories(dir);
+    for (std::size_t i = 0; i < seq.size(); ++i)
+    {
+        const hif::io::Cloud c = seq.readScan(i);
+        hif::io::CloudWriter w({dir + "/" + hif::io::frameName(i) + ext});
+        for (std::size_t k = 0; k < c.size(); ++k) w.add(c.x[k], c.y[k], c.z[k], c.intensity[k]);
+        w.close();
+    }
+}
+
+/** One pose a line, KITTI format (3x4, 17 digits: read back exactly). */
+void writeKittiPoses(const std::vector<Eigen::Isometry3d>& poses, const std::string& file)
+{
+    std::ofstream f(file);
+    f << std::setprecision(17);
+    for (const Eigen::Isometry3d& T : poses)
+    {
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 4; ++c) f << T(r, c) << (r == 2 && c == 3 ? "\n" : " ");
+    }
+}
+
+std::vector<Eigen::Isometry3d> lidarPoses(const hif::io::KittiSequence& seq)
+{
+    std::vector<Eigen::Isometry3d> poses;
+    for (std::size_t i = 0; i < seq.size(); ++i) poses.push_back(seq.pose(i));
+    return poses;
+}
+
+/** Labels of every scan in `dir`/predictions. */
+std::vector<uint32_t> predictions(const std::string& dir, std::size_t scans)
+{
+    std::vector<uint32_t> all;
+    for (std::size_t i = 0; i < scans; ++i)
+    {
+        const auto l =
+            hif::io::readLabels(dir + "/predictions/" + hif::io::frameName(i) + ".label");
+        all.insert(all.end(), l.begin(), l.end());
+    }
+    return all;
+}
+
+Result clean(const std::string& input, const std::string& out, const std::string& flags = "")
+{
+    return runApp("hif-clean", "-i " + input + " -o " + out + " -q --no-png " + flags);
+}
+}  // namespace
+
+TEST(SlamFolders, CloudsWithTheirPosesGiveTheKittiFoldersClasses)
+{
+    const std::string dir = hif::test::kittiRoot() + "/sequences/04";
+    HIF_REQUIRE_KITTI_SEQUENCE(dir);
+    const WorkDir work = workDir("slam_folders_" + std::to_string(getpid()));
+    const std::string& w = work.path();
+    const hif::io::KittiSequence seq(dir);
+    const auto poses = lidarPoses(seq);
+    // LIO-SAM / KISS-ICP style: NNNNNN.pcd beside poses.txt; .ply clouds with the poses
+    // elsewhere (--poses); the same clouds with a TUM trajectory.
+    writeScans(seq, w + "/pcd_scans", ".pcd");
+    writeKittiPoses(poses, w + "/pcd_scans/poses.txt");
+    writeScans(seq, w + "/ply_scans", ".ply");
+    writeKittiPoses(poses, w + "/ply_poses_kitti.txt");
+    {
+        std::ofstream f(w + "/poses_tum.txt");
+        f << "# timestamp tx ty tz qx qy qz qw\n" << std::setprecision(17);
+        for (std::size_t i = 0; i < seq.size(); ++i)
+        {
+            const Eigen::Quaterniond q(poses[i].linear());
+            const Eigen::Vector3d& t = poses[i].translation();
+            f << seq.time(i) << ' ' << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x() << ' '
+              << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
+        }
+    }
+
+    Result r = clean(dir, w + "/kitti_out");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto reference = predictions(w + "/kitti_out", seq.size());
+    const auto ref_summary = readJson(w + "/kitti_out/summary.json");
+    EXPECT_FALSE(ref_summary["poses_check"]["doubted"].get<bool>());
+    EXPECT_GT(ref_summary["poses_check"]["overlap_above_sensor"].get<double>(),
+              ref_summary["poses_check"]["overlap_above_sensor_without_motion"].get<double>());
+
+    r = clean(w + "/pcd_scans", w + "/pcd_out");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(predictions(w + "/pcd_out", seq.size()), reference);
+    EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
+
+    r = clean(w + "/ply_scans", w + "/ply_out", "--poses " + w + "/ply_poses_kitti.txt");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("at the poses of " + w + "/ply_poses_kitti.txt"), std::string::npos)
+        << r.output;
+    EXPECT_EQ(predictions(w + "/ply_out", seq.size()), reference);
+
+    // A quaternion printed to 17 digits gives the rotation to about 1e-16: a point on a cell's
+    // border may change sides, hardly more.
+    r = clean(w + "/pcd_scans", w + "/tum_out", "--poses " + w + "/poses_tum.txt --scan-numbers");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto tum = predictions(w + "/tum_out", seq.size());
+    ASSERT_EQ(tum.size(), reference.size());
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < tum.size(); ++i) differ += tum[i] != reference[i];
+    EXPECT_LE(differ, reference.size() / 100000) << differ << " of " << reference.size();
+    // --scan-numbers: each kept point with its scan's number and the trajectory's time.
+    std::ifstream ply(w + "/tum_out/static_map.ply", std::ios::binary);
+    std::string header;
+    for (std::string line; std::getline(ply, line) && line != "end_header";) header += line + "\n";
+    EXPECT_NE(header.find("property float intensity\nproperty uint scan\nproperty double time\n"),
+              std::string::npos)
+        << header;
+    std::vector<std::size_t> per_scan(seq.size(), 0);
+    for (char rec[28]; ply.read(rec, 28);)
+    {
+        uint32_t scan = 0;
+        double time = 0;
+        std::memcpy(&scan, rec + 16, 4);
+        std::memcpy(&time, rec + 20, 8);
+        ASSERT_LT(scan, seq.size());
+        ASSERT_EQ(time, seq.time(scan));
+        ++per_scan[scan];
+    }
+    const auto kept = hif::io::readLabels(w + "/tum_out/predictions/000003.label");
+    EXPECT_EQ(per_scan[3],
+              std::size_t(std::count(kept.begin(), kept.end(), hif::io::kLabelStatic)));
+}
+
+TEST(SlamFolders, PosesThatDoNotBelongToTheScansAreWarnedAboutAtTheStart)
+{
+    const std::string dir = hif::test::kittiRoot() + "/sequences/04";
+    HIF_REQUIRE_KITTI_SEQUENCE(dir);
+    const WorkDir work = workDir("slam_poses_" + std::to_string(getpid()));
+    const std::string& w = work.path();
+    const hif::io::KittiSequence seq(dir);
+    writeScans(seq, w + "/scans", ".pcd");
+    const auto right = lidarPoses(seq);
+    // The two mistakes the peers' trackers see most: KITTI's camera poses used as the LiDAR's
+    // (another frame), and the world-to-sensor transform instead of sensor-to-world.
+    std::vector<Eigen::Isometry3d> camera, inverted;
+    for (const Eigen::Isometry3d& T : right)
+    {
+        camera.push_back(seq.Tr() * T * seq.Tr().inverse());
+        inverted.push_back(T.inverse());
+    }
+    for (const auto& [name, poses] :
+         {std::make_pair("camera", camera), std::make_pair("inverted", inverted)})
+    {
+        SCOPED_TRACE(name);
+        const std::string file = w + "/" + name + "_poses.txt";
+        writeKittiPoses(poses, file);
+        const Result r = clean(w + "/scans", w + "/" + name + "_out", "--poses " + file);
+        ASSERT_EQ(r.code, 0) << r.output;
+        EXPECT_NE(r.output.find("warning: the poses may not belong to the scans"),
+                  std::string::npos)
+            << r.output;
+        // Said before the run was spent: ahead of the classifying pass's report.
+        EXPECT_LT(r.output.find("may not belong"), r.output.find("kept")) << r.output;
+        EXPECT_TRUE(
+            readJson(w + "/" + name + "_out/summary.json")["poses_check"]["doubted"].get<bool>());
+    }
+}
+
+TEST(SlamFolders, WrongFoldersAndTrajectoriesAreNamed)
+{
+    const WorkDir work = workDir("slam_errors_" + std::to_string(getpid()));
+    const std::string& w = work.path();
+    // Three small clouds in the sensor frame.
+    fs::create_directories(w + "/scans");
+    for (int i = 0; i < 3; ++i)
+    {
+        hif::io::CloudWriter c({w + "/scans/" + hif::io::frameName(i) + ".pcd"});
+        for (int k = 0; k < 100; ++k) c.add(5.0 + 0.01 * k, 1.0, -1.0, 1.0f);
+        c.close();
+    }
+    const auto write = [&](const std::string& name, const std::string& text)
+    {
+        std::ofstream(w + "/" + name) << text;
+        return w + "/" + name;
+    };
+    const std::string id = "1 0 0 0 0 1 0 0 0 0 1 0\n";
+    // A single cloud: what was given and what is read.
+    expectError(clean(w + "/scans/000000.pcd", w + "/o1"),
+                "is one point cloud (pcd), without a pose");
+    // A folder of clouds without poses.
+    expectError(clean(w + "/scans", w + "/o2"), "neither velodyne/, pcd/ nor poses.txt");
+    // Fewer poses than clouds.
+    expectError(clean(w + "/scans", w + "/o3", "--poses " + write("two.txt", id + id)),
+                "has 2 poses for the 3 scans");
+    // Neither format.
+    expectError(clean(w + "/scans", w + "/o4", "--poses " + write("seven.txt", "1 2 3 4 5 6 7\n")),
+                "line 1 has 7 numbers: neither a KITTI pose (12: a 3x4 matrix) nor a TUM pose");
+    // A TUM quaternion that is not a rotation, and times going back.
+    expectError(
+        clean(
+            w + "/scans", w + "/o5",
+            "--poses " + write("q.txt", "0 0 0 0 0 0 0 1\n0.1 0 0 0 0 0 0 2\n0.2 0 0 0 0 0 0 1\n")),
+        "line 2: the quaternion (qx qy qz qw) has norm 2");
+    expectError(
+        clean(
+            w + "/scans", w + "/o6",
+            "--poses " + write("t.txt", "0 0 0 0 0 0 0 1\n0.2 0 0 0 0 0 0 1\n0.1 0 0 0 0 0 0 1\n")),
+        "line 3: time 0.1 does not come after");
+    // A line of another length in the middle.
+    expectError(clean(w + "/scans", w + "/o7",
+                      "--poses " + write("mixed.txt", id + "0 0 0 0 0 0 0 1\n" + id)),
+                "line 2 has 8 numbers where the lines before have 12");
+    // --poses with a KITTI folder, and .pcd beside .ply.
+    fs::create_directories(w + "/kitti/velodyne");
+    expectError(clean(w + "/kitti", w + "/o8", "--poses " + write("three.txt", id + id + id)),
+                "--poses is for a folder of clouds");
+    fs::copy_file(w + "/scans/000000.pcd", w + "/scans/000003.ply");
+    expectError(clean(w + "/scans", w + "/o9", "--poses " + w + "/three.txt"),
+                "holds both .pcd and .ply scans");
+    fs::remove(w + "/scans/000003.ply");
+    // A cloud that says it is in the world frame.
+    {
+        hif::io::CloudWriter c({w + "/scans/000002.pcd"});
+        Eigen::Isometry3d vp = Eigen::Isometry3d::Identity();
+        vp.translation() = Eigen::Vector3d(10, 0, 0);
+        c.setViewpoint(vp);
+        c.add(5.0, 1.0, -1.0, 1.0f);
+        c.close();
+    }
+    expectError(clean(w + "/scans", w + "/o10", "--poses " + w + "/three.txt"),
+                "000002.pcd' has a VIEWPOINT other than the identity");
+    // Nothing was written for any of them.
+    for (int k = 1; k <= 10; ++k) EXPECT_FALSE(fs::exists(w + "/o" + std::to_string(k))) << k;
+}
