@@ -66,10 +66,10 @@ public:
      *  its predictions file) and, if the first scan has a time stamp, its scan's time. */
     void writeScanNumbers() { scan_numbers_ = true; }
     /** Also writes every scan without its dynamic points to `file`, an MRPT rawlog (the one
-     *  the user named `name`). */
-    void writeRawlog(const std::string& file, const std::string& name)
+     *  the user named `name`), gzip-compressed at `level` (0: not compressed). */
+    void writeRawlog(const std::string& file, const std::string& name, int level)
     {
-        rawlog_.emplace(file, 0, name);
+        rawlog_.emplace(file, level, name);
     }
     /** The cleaned rawlog, if written: completes it and says how many scans it holds. */
     std::size_t closeRawlog();

@@ -114,6 +114,15 @@ struct Cli
         "",
         "clean.rawlog",
         cmd};
+    TCLAP::ValueArg<long long> rawlog_compress{
+        "",
+        "rawlog-compress",
+        "gzip compression level 1-9 of --rawlog-out's rawlog (as kitti2rawlog -z); 0 writes it "
+        "uncompressed (default: 0, the fastest to read)",
+        false,
+        0,
+        "0-9",
+        cmd};
     TCLAP::SwitchArg classes_ply{
         "", "classes-ply",
         "Also write classes.ply: every point (world frame) with its intensity, a colour by its "
@@ -447,7 +456,12 @@ int runClean(Cli& cli)
             hif::apps::flagInRange(cli.first_frame.getValue(), "--first-frame", 0, 999999));
     Outputs out(dir, first_frame, std::move(static_files), std::move(removed_files));
     if (!cli.no_png.getValue()) out.drawPicture();
-    if (run.staged_rawlog) out.writeRawlog(run.staged_rawlog->path(), cli.rawlog_out.getValue());
+    if (cli.rawlog_compress.isSet() && !run.staged_rawlog)
+        throw std::runtime_error("--rawlog-compress goes with --rawlog-out");
+    const int level = static_cast<int>(
+        hif::apps::flagInRange(cli.rawlog_compress.getValue(), "--rawlog-compress", 0, 9));
+    if (run.staged_rawlog)
+        out.writeRawlog(run.staged_rawlog->path(), cli.rawlog_out.getValue(), level);
     if (cli.classes_ply.getValue()) out.writeClasses(dir + "/classes.ply");
     if (cli.scan_numbers.getValue()) out.writeScanNumbers();
     Timings t;

@@ -834,6 +834,23 @@ TEST_F(SyntheticPipeline, RawlogOutHoldsTheKeptPointsForMrptTools)
     EXPECT_EQ(again["points_in"], first["points_kept"]);
     EXPECT_EQ(again["skipped_objects"], 0);
     EXPECT_TRUE(fs::exists(d + "/again/predictions/000019.label"));
+    // Compressed on request (gzip, as kitti2rawlog -z), and read back the same.
+    r = runApp("hif-clean", "-i " + root_ + "/seq -o " + d + "/gz -q --no-png --rawlog-out " + d +
+                                "/clean.rawlog.gz --rawlog-compress 6");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const std::string gz = hif::test::bytesOf(d + "/clean.rawlog.gz");
+    ASSERT_GT(gz.size(), 2u);
+    EXPECT_EQ(uint8_t(gz[0]), 0x1f);
+    EXPECT_EQ(uint8_t(gz[1]), 0x8b);
+    EXPECT_LT(gz.size(), fs::file_size(d + "/clean.rawlog"));
+    r = runApp("hif-clean", "-i " + d + "/clean.rawlog.gz -o " + d + "/again_gz -q --no-png");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(readJson(d + "/again_gz/summary.json")["points_in"], first["points_kept"]);
+    expectError(runApp("hif-clean", "-i " + root_ + "/seq -o " + d + "/gz2 -q --rawlog-compress 6"),
+                "--rawlog-compress goes with --rawlog-out");
+    expectError(runApp("hif-clean", "-i " + root_ + "/seq -o " + d + "/gz3 -q --rawlog-out " + d +
+                                        "/x.rawlog --rawlog-compress 12"),
+                "--rawlog-compress 12 is not in [0, 9]");
     if (std::system("command -v rawlog-edit > /dev/null 2>&1") == 0)
     {
         const std::string cmd =

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "WidePoints.h"
 #include "hif/io/CloudFiles.h"
 #include "hif/io/FileError.h"
 #include "hif/io/ParseNumber.h"
@@ -116,19 +117,7 @@ PcdCloud readPcd(const std::string& file)
     out.y.resize(points);
     out.z.resize(points);
     out.intensity.assign(points, 0.0f);
-    // float64 coordinates are kept as float32 offsets from an origin near them.
-    bool have_origin = !wide;
-    const auto store = [&](std::size_t p, double vx, double vy, double vz)
-    {
-        if (!have_origin && std::isfinite(vx) && std::isfinite(vy) && std::isfinite(vz))
-        {
-            out.origin = Eigen::Vector3d(vx, vy, vz);
-            have_origin = true;
-        }
-        out.x[p] = static_cast<float>(vx - out.origin.x());
-        out.y[p] = static_cast<float>(vy - out.origin.y());
-        out.z[p] = static_cast<float>(vz - out.origin.z());
-    };
+    WidePoints stored(out, wide);
     if (data == "binary")
     {
         // One read of the whole body, then the fields picked out of each record.
@@ -168,8 +157,8 @@ PcdCloud readPcd(const std::string& file)
             };
             for (std::size_t p = 0; p < points; ++p, rec += stride)
             {
-                store(p, coord(rec + ox, sizes[ix]), coord(rec + oy, sizes[iy]),
-                      coord(rec + oz, sizes[iz]));
+                stored.store(p, coord(rec + ox, sizes[ix]), coord(rec + oy, sizes[iy]),
+                             coord(rec + oz, sizes[iz]));
                 if (ii >= 0) std::memcpy(&out.intensity[p], rec + oi, 4);
             }
         }
@@ -207,7 +196,7 @@ PcdCloud readPcd(const std::string& file)
                 col += static_cast<std::size_t>(counts[k]);
             }
             if (wide)
-                store(p, first[ix], first[iy], first[iz]);
+                stored.store(p, first[ix], first[iy], first[iz]);
             else
             {
                 out.x[p] = static_cast<float>(first[ix]);

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "WidePoints.h"
 #include "hif/io/CloudFiles.h"
 #include "hif/io/FileError.h"
 #include "hif/io/ParseNumber.h"
@@ -192,19 +193,7 @@ PcdCloud readPly(const std::string& file)
     PcdCloud out;
     out.resize(vertices);
     std::fill(out.intensity.begin(), out.intensity.end(), 0.0f);
-    // float64 coordinates are kept as float32 offsets from an origin near them (as readPcd).
-    bool have_origin = !wide;
-    const auto store = [&](std::size_t p, double vx, double vy, double vz)
-    {
-        if (!have_origin && std::isfinite(vx) && std::isfinite(vy) && std::isfinite(vz))
-        {
-            out.origin = Eigen::Vector3d(vx, vy, vz);
-            have_origin = true;
-        }
-        out.x[p] = static_cast<float>(vx - out.origin.x());
-        out.y[p] = static_cast<float>(vy - out.origin.y());
-        out.z[p] = static_cast<float>(vz - out.origin.z());
-    };
+    WidePoints stored(out, wide);
     if (binary)
     {
         std::vector<char> body(vertices * stride);
@@ -214,9 +203,9 @@ PcdCloud readPly(const std::string& file)
         const char* rec = body.data();
         for (std::size_t p = 0; p < vertices; ++p, rec += stride)
         {
-            store(p, binaryValue(rec + props[ix].offset, props[ix].scalar),
-                  binaryValue(rec + props[iy].offset, props[iy].scalar),
-                  binaryValue(rec + props[iz].offset, props[iz].scalar));
+            stored.store(p, binaryValue(rec + props[ix].offset, props[ix].scalar),
+                         binaryValue(rec + props[iy].offset, props[iy].scalar),
+                         binaryValue(rec + props[iz].offset, props[iz].scalar));
             if (ii >= 0)
                 out.intensity[p] =
                     static_cast<float>(binaryValue(rec + props[ii].offset, props[ii].scalar));
@@ -243,7 +232,7 @@ PcdCloud readPly(const std::string& file)
                                          "' is not a number");
             vals[k] = *v;
         }
-        store(p, vals[ix], vals[iy], vals[iz]);
+        stored.store(p, vals[ix], vals[iy], vals[iz]);
         if (ii >= 0) out.intensity[p] = static_cast<float>(vals[ii]);
     }
     return out;
