@@ -329,7 +329,7 @@ int run(Cli& cli)
                 const bool removed = hif::io::isPredictedMoving(pred[i]);
                 const uint32_t t = truth[i] & 0xFFFFu;
                 const bool judged = hif::io::isScored(t), moving = hif::io::isMovingClass(t);
-                const V::Outcome o = !judged  ? (removed ? V::kRemoved : V::kKept)
+                const V::Outcome o = !judged  ? (removed ? V::kRemovedUnlabelled : V::kKept)
                                      : moving ? (removed ? V::kRemoved : V::kMissedMoving)
                                               : (removed ? V::kWronglyRemoved : V::kKept);
                 if (view) view->add(w.x[i], w.y[i], static_cast<float>(w.z[i]), o);

@@ -358,6 +358,15 @@ TEST_F(SyntheticPipeline, OfflineAndOnlineCleaningScoreAndWriteEverything)
                 s["dynamic_total"].get<std::size_t>() - s["dynamic_removed"].get<std::size_t>());
             EXPECT_EQ(colours.at(packed(V::kWronglyRemoved)),
                       s["static_total"].get<std::size_t>() - s["static_kept"].get<std::size_t>());
+            // Red is for removed moving points only; removed unlabelled ones have their own.
+            const auto count = [&colours](V::Outcome o)
+            {
+                const auto it = colours.find(packed(o));
+                return it == colours.end() ? std::size_t{0} : it->second;
+            };
+            EXPECT_EQ(count(V::kRemoved), s["dynamic_removed"].get<std::size_t>());
+            EXPECT_EQ(count(V::kRemoved) + count(V::kWronglyRemoved) + count(V::kRemovedUnlabelled),
+                      removed);
         }
         // The saved map loads back through MRPT's class factory, as the one that was used.
         mrpt::io::CFileGZInputStream f(out + "/map.hifmap");

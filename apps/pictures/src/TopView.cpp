@@ -25,8 +25,8 @@ constexpr float kNone = std::numeric_limits<float>::quiet_NaN();
 const cv::Scalar kBackground(24, 24, 24);
 const cv::Scalar kText(235, 235, 235);
 
-const char* const kName[4] = {"kept", "removed", "moving, missed (kept)",
-                              "static, wrongly removed"};
+const char* const kName[5] = {"kept", "removed", "moving, missed (kept)", "static, wrongly removed",
+                              "unlabelled, removed (not scored)"};
 
 cv::Scalar bgr(int outcome)
 {
@@ -258,7 +258,7 @@ TopView::Picture TopView::write(const std::string& file, const std::string& titl
     // shape.
     const int scale = std::max(1, std::min((min_width + w - 1) / w, kMaxSide / std::max(w, h)));
     const int band = 40;
-    const int n = with_truth ? 4 : 2;
+    const int n = with_truth ? 5 : 2;
     const cv::Rect legend(10, band + 10, 420, 30 + 26 * n);
     const int canvas_w = std::max(w * scale, legend.x + legend.width + 10);
     const int canvas_h = std::max(h * scale + band, legend.y + legend.height + 60);
@@ -276,7 +276,8 @@ TopView::Picture TopView::write(const std::string& file, const std::string& titl
                 for (int dx = 0; dx < scale; ++dx)
                     map.at<cv::Vec3b>(row + dy, c * scale + dx) = {g, g, g};
         }
-    for (int k = 1; k < 4; ++k)
+    // Unlabelled points first: a cell that also holds a scored outcome shows that one.
+    for (const int k : {4, 1, 2, 3})
         for (int r = 0; r < h; ++r)
             for (int c = 0; c < w; ++c)
                 if (marks[std::size_t(r) * std::size_t(w) + std::size_t(c)] & (1u << k))

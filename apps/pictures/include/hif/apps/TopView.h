@@ -42,16 +42,17 @@ public:
     /** What became of a point. */
     enum Outcome : uint8_t
     {
-        kKept = 0,            ///< kept (static, or not known)
-        kRemoved = 1,         ///< removed (moving, or not known)
-        kMissedMoving = 2,    ///< a moving point that was kept (ground truth given)
-        kWronglyRemoved = 3,  ///< a static point that was removed (ground truth given)
+        kKept = 0,               ///< kept (static, or not known)
+        kRemoved = 1,            ///< removed (moving, or not known)
+        kMissedMoving = 2,       ///< a moving point that was kept (ground truth given)
+        kWronglyRemoved = 3,     ///< a static point that was removed (ground truth given)
+        kRemovedUnlabelled = 4,  ///< removed, unlabelled in the ground truth (not scored)
     };
 
     /** The colour of each outcome (red, green, blue), as the picture's legend shows it (kept
      *  points are drawn in grey by height there, light grey elsewhere). */
-    static constexpr uint8_t kRgb[4][3] = {
-        {200, 200, 200}, {230, 40, 40}, {255, 215, 0}, {0, 160, 255}};
+    static constexpr uint8_t kRgb[5][3] = {
+        {200, 200, 200}, {230, 40, 40}, {255, 215, 0}, {0, 160, 255}, {190, 90, 230}};
 
     /** The longest side of a picture, pixels: a larger area is drawn coarser. */
     static constexpr int kMaxSide = 8000;
