@@ -7,6 +7,9 @@
 
 #include <mrpt/maps/CPointsMapXYZI.h>
 #include <mrpt/obs/CObservationPointCloud.h>
+#include <mrpt/opengl/COpenGLScene.h>
+#include <mrpt/opengl/CPointCloud.h>
+#include <mrpt/opengl/CSetOfObjects.h>
 
 #include <algorithm>
 #include <cmath>
@@ -38,12 +41,21 @@ void worldPoints(const hif::apps::Scan& scan, std::vector<double>& x, std::vecto
 
 Outputs::Outputs(const std::string& dir, std::optional<std::size_t> first_frame,
                  std::vector<std::string> static_files, std::vector<std::string> removed_files)
-    : kept_cloud_(std::move(static_files)),
-      removed_cloud_(std::move(removed_files)),
+    : removed_cloud_(std::move(removed_files)),
       pred_dir_(dir + "/predictions"),
       first_frame_(first_frame)
 {
+    if (!static_files.empty()) kept_cloud_.emplace(std::move(static_files));
     hif::apps::makeDirs(pred_dir_);
+}
+
+void Outputs::mergeKept(double voxel, std::vector<std::string> files, std::size_t memory_bytes)
+{
+    const std::string runs = files.front() + ".voxels-";
+    voxels_.emplace(voxel, runs, hif::io::VoxelMerger::voxelsWithin(memory_bytes));
+    hif::io::PointFields f;
+    f.points = true;
+    voxel_cloud_.emplace(std::move(files), f);
 }
 
 void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::apps::Scan& scan,
@@ -67,8 +79,8 @@ void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::ap
     {
         // The scan's number, and its time where the input has times (from the first scan on).
         times_ = scan.obs->timestamp != INVALID_TIMESTAMP;
-        for (hif::io::CloudWriter* w :
-             {&kept_cloud_, &removed_cloud_, classes_ ? &*classes_ : nullptr})
+        for (hif::io::CloudWriter* w : {kept_cloud_ ? &*kept_cloud_ : nullptr, &removed_cloud_,
+                                        classes_ ? &*classes_ : nullptr})
         {
             if (!w) continue;
             hif::io::PointFields f = w->fields();
@@ -92,7 +104,16 @@ void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::ap
         p.y = y[i];
         p.z = z[i];
         p.intensity = intensity[i];
-        (dyn[i] ? removed_cloud_ : kept_cloud_).add(p);
+        if (dyn[i])
+        {
+            removed_cloud_.add(p);
+            if (removed_points_) keepRemoved(p.x, p.y, p.z);
+        }
+        else
+        {
+            if (kept_cloud_) kept_cloud_->add(p);
+            if (voxels_) voxels_->add(p.x, p.y, p.z, p.intensity);
+        }
         if (classes_)
         {
             const uint8_t* c = hif::apps::TopView::kRgb[dyn[i] ? hif::apps::TopView::kRemoved
@@ -104,6 +125,7 @@ void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::ap
             classes_->add(p);
         }
     }
+    if (voxels_) voxels_->nextScan();
     if (rawlog_) rawlog_->write(scan, dyn);
     if (view_)
         for (std::size_t i = 0; i < dyn.size(); ++i)
@@ -121,6 +143,45 @@ void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::ap
     points_invalid += st.invalid_points;
     points_near += st.near_points;
     points_seen_through += st.seen_through_points;
+}
+
+void Outputs::keepRemoved(double x, double y, double z)
+{
+    std::vector<float>& v = *removed_points_;
+    if (v.empty() && std::max({std::abs(x), std::abs(y), std::abs(z)}) >=
+                         hif::io::CloudWriter::kFloatCoordinateLimit)
+    {
+        removed_anchor_[0] = std::floor(x);
+        removed_anchor_[1] = std::floor(y);
+        removed_anchor_[2] = std::floor(z);
+    }
+    v.push_back(static_cast<float>(x - removed_anchor_[0]));
+    v.push_back(static_cast<float>(y - removed_anchor_[1]));
+    v.push_back(static_cast<float>(z - removed_anchor_[2]));
+}
+
+void Outputs::writeScene(const hif::CHeightIntervalMap& map, const std::string& file) const
+{
+    mrpt::opengl::COpenGLScene scene;
+    auto kept = mrpt::opengl::CSetOfObjects::Create();
+    map.getVisualizationInto(*kept);
+    scene.insert(kept);
+    if (removed_points_)
+    {
+        auto removed = mrpt::opengl::CPointCloud::Create();
+        removed->setName("hif: removed points");
+        const uint8_t* red = hif::apps::TopView::kRgb[hif::apps::TopView::kRemoved];
+        removed->setColor_u8(red[0], red[1], red[2]);
+        removed->setPointSize(2.0f);
+        removed->setLocation(removed_anchor_[0], removed_anchor_[1], removed_anchor_[2]);
+        const std::vector<float>& v = *removed_points_;
+        removed->reserve(v.size() / 3);
+        for (std::size_t i = 0; i + 2 < v.size(); i += 3)
+            removed->insertPoint(v[i], v[i + 1], v[i + 2]);
+        scene.insert(removed);
+    }
+    if (!scene.saveToFile(file))
+        throw std::runtime_error("Error writing to target file '" + file + "'");
 }
 
 std::size_t Outputs::frameOf(const hif::apps::Scan& scan, std::size_t k) const
@@ -197,7 +258,29 @@ std::size_t Outputs::closeRawlog()
 
 void Outputs::close()
 {
-    kept_cloud_.close();
+    if (voxels_)
+    {
+        VoxelMap v;
+        v.voxel = voxels_->voxel();
+        v.merged = voxels_->pointsAdded();
+        hif::io::CloudPoint c;
+        v.points = voxels_->finish(
+            [&](const hif::io::MergedPoint& p)
+            {
+                c.x = p.x;
+                c.y = p.y;
+                c.z = p.z;
+                c.intensity = p.intensity;
+                c.points = p.points;
+                voxel_cloud_->add(c);
+            });
+        v.spills = voxels_->spills();
+        v.peak_voxels = voxels_->peakVoxels();
+        voxels_.reset();
+        voxel_cloud_->close();
+        voxel_map_ = v;
+    }
+    if (kept_cloud_) kept_cloud_->close();
     removed_cloud_.close();
     if (classes_) classes_->close();
 }

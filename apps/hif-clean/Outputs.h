@@ -17,6 +17,7 @@
 #include "hif/apps/Cli.h"
 #include "hif/apps/TopView.h"
 #include "hif/io/CloudFiles.h"
+#include "hif/io/VoxelMerger.h"
 
 using hif::apps::Clock;
 using hif::apps::msSince;
@@ -40,7 +41,7 @@ struct Timings
 class Outputs
 {
 public:
-    /** `static_files` receive the kept points, `removed_files` the others.
+    /** `static_files` (none, or some) receive the kept points, `removed_files` the others.
      *  Predictions are named after each scan's frame number when the input gives it (then
      *  `first_frame`, if given, must be the first scan's), else `first_frame` (default 0) + k. */
     Outputs(const std::string& dir, std::optional<std::size_t> first_frame,
@@ -53,7 +54,25 @@ public:
                           std::size_t k);
     /** Before the first scan is classified: about how many points the kept cloud will get (a
      *  guess: right to the number of digits, it saves a copy of that file). */
-    void expectKept(std::size_t points) { kept_cloud_.expectCount(points); }
+    void expectKept(std::size_t points)
+    {
+        if (kept_cloud_) kept_cloud_->expectCount(points);
+    }
+    /** Before the first scan: the kept points also go to `files`, merged per cubic voxel of
+     *  `voxel` metres (x y z: their centroid, intensity: their mean, uint points: how many), in
+     *  bounded memory (a table of at most `memory_bytes` for the voxels around the sensor; the
+     *  others wait in run files next to the first file, merged at close()). */
+    void mergeKept(double voxel, std::vector<std::string> files, std::size_t memory_bytes);
+    /** The voxel map, if written (complete after close()). */
+    struct VoxelMap
+    {
+        double voxel = 0;
+        std::size_t points = 0;  ///< voxels written
+        std::size_t merged = 0;  ///< kept points merged into them
+        std::size_t spills = 0;  ///< run files written on the way
+        std::size_t peak_voxels = 0;
+    };
+    [[nodiscard]] const std::optional<VoxelMap>& voxelMap() const { return voxel_map_; }
     /** Also writes every point to `file`, a PLY: x y z, intensity, a colour by its class
      *  (TopView::kRgb: kept light grey, removed red) and the class (0 kept, 1 removed). */
     void writeClasses(const std::string& file)
@@ -73,6 +92,13 @@ public:
     }
     /** The cleaned rawlog, if written: completes it and says how many scans it holds. */
     std::size_t closeRawlog();
+    /** Before the first scan: the removed points are also kept in memory (12 bytes each), for
+     *  writeScene(). */
+    void collectRemoved() { removed_points_.emplace(); }
+    /** Writes `file`, a scene for MRPT's SceneViewer3D: what `map` keeps (its static intervals,
+     *  getVisualizationInto()) and, if collected, the removed points in red. Throws
+     *  std::runtime_error naming the file if it cannot be written. */
+    void writeScene(const hif::CHeightIntervalMap& map, const std::string& file) const;
     /** Also draws every point into a bird's-eye picture (see writePicture()). */
     void drawPicture() { view_.emplace(); }
     /** Before the first point: the picture's cells sized for the map's main area. */
@@ -84,7 +110,9 @@ public:
      *  origin: UTM and the like). */
     [[nodiscard]] bool doubleCoordinates() const
     {
-        return kept_cloud_.doubleCoordinates() || removed_cloud_.doubleCoordinates();
+        return (kept_cloud_ && kept_cloud_->doubleCoordinates()) ||
+               removed_cloud_.doubleCoordinates() ||
+               (voxel_cloud_ && voxel_cloud_->doubleCoordinates());
     }
     /** Whether a picture is drawn. */
     [[nodiscard]] bool drawsPicture() const { return view_.has_value(); }
@@ -97,16 +125,26 @@ public:
     double write_ms_total = 0;
 
 private:
+    /** Keeps a removed point for writeScene(). */
+    void keepRemoved(double x, double y, double z);
     /** The number of scan `k` (its predictions file's): the input's, else first_frame + k. */
     [[nodiscard]] std::size_t frameOf(const hif::apps::Scan& scan, std::size_t k) const;
 
-    hif::io::CloudWriter kept_cloud_, removed_cloud_;
+    std::optional<hif::io::CloudWriter> kept_cloud_;
+    hif::io::CloudWriter removed_cloud_;
+    std::optional<hif::io::VoxelMerger> voxels_;       ///< with mergeKept()
+    std::optional<hif::io::CloudWriter> voxel_cloud_;  ///< where they go
+    std::optional<VoxelMap> voxel_map_;
     std::string pred_dir_;
     std::optional<std::size_t> first_frame_;
     std::vector<bool> written_;     ///< frame numbers written, to refuse a second scan of one
     std::vector<double> xyz_[3];    ///< world x, y, z of the current scan
     std::vector<float> intensity_;  ///< its intensities
     std::optional<hif::apps::TopView> view_;
+    /** With collectRemoved(): the removed points, float32 relative to removed_anchor_ (the
+     *  first one's metre when it lies 8 km or more from the origin: UTM keeps millimetres). */
+    std::optional<std::vector<float>> removed_points_;
+    double removed_anchor_[3] = {0, 0, 0};
     std::optional<RawlogOut> rawlog_;
     std::optional<hif::io::CloudWriter> classes_;
     bool scan_numbers_ = false;

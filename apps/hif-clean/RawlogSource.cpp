@@ -6,6 +6,7 @@
  */
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/obs/CObservationComment.h>
+#include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CObservationRobotPose.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/serialization/CArchive.h>
@@ -60,6 +61,9 @@ public:
                     continue;
                 }
             }
+            // Odometry (as kitti2rawlog --odometry writes the trajectory for MRPT's viewers) is
+            // not a pose of the scans here: they are placed at their CObservationRobotPose.
+            if (obj && IS_CLASS(*obj, CObservationOdometry)) continue;
             if (auto rp = std::dynamic_pointer_cast<CObservationRobotPose>(obj))
             {
                 pose_ = rp->pose.mean;

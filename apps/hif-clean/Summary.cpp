@@ -39,8 +39,19 @@ void writeSummary(const std::string& file, const SummaryInfo& info,
     j["points_invalid"] = out.points_invalid;
     j["points_near"] = out.points_near;
     j["points_seen_through"] = out.points_seen_through;
+    if (const auto& v = out.voxelMap())
+        j["voxel_map"] = {{"voxel_m", v->voxel},
+                          {"points", v->points},
+                          {"points_merged", v->merged},
+                          {"voxels_in_memory_max", v->peak_voxels},
+                          {"run_files", v->spills}};
     j["pillars"] = map.pillarCount();
     j["intervals"] = map.intervalCount();
+    std::size_t kept_intervals = 0;
+    for (const auto& [idx, pillar] : map.grid().sortedPillars())
+        for (const hif::Interval& iv : pillar->intervals)
+            kept_intervals += map.grid().isStaticLogOdds(iv.logodds);
+    j["intervals_static"] = kept_intervals;  // the boxes of map.3Dscene
     j["max_intervals_per_pillar_seen"] = map.grid().maxIntervalsInAPillar();
     j["map_bytes"] = map.grid().memoryBytes();
     j["threads"] = map.grid().threads();
@@ -132,8 +143,12 @@ void printReport(const std::string& tag, const std::string& out_dir, const std::
               << per_scan.median << ", p90 " << per_scan.p90 << ", max " << per_scan.max
               << "; classify median " << cls.median << "\n"
               << tag << " total " << t.total_s << " s, peak memory " << hif::apps::peakRssMiB()
-              << " MiB\n"
-              << tag << " wrote " << out_dir << "/{static_map,removed}."
+              << " MiB\n";
+    if (const auto& v = out.voxelMap())
+        std::cout << tag << " static_map: " << v->points << " voxels of " << std::defaultfloat
+                  << std::setprecision(6) << v->voxel << std::fixed << std::setprecision(2)
+                  << " m from the " << v->merged << " kept points\n";
+    std::cout << tag << " wrote " << out_dir << "/{static_map,removed}."
               << (format == "both" ? "{ply,pcd}" : format)
               << (out.drawsPicture() ? ", map.png" : "") << ", predictions/, map.hifmap, ";
     for (const std::string& f : extra) std::cout << f << ", ";

@@ -11,11 +11,14 @@
 #include <mrpt/io/CFileOutputStream.h>
 #include <mrpt/maps/CPointsMapXYZI.h>
 #include <mrpt/obs/CObservationComment.h>
+#include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/obs/CObservationRobotPose.h>
+#include <mrpt/poses/CPose2D.h>
 #include <mrpt/poses/CPose3D.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -36,7 +39,8 @@ struct Cli
     TCLAP::CmdLine cmd{
         "kitti2rawlog: converts a KITTI odometry sequence (velodyne/*.bin, poses.txt, "
         "calib.txt, times.txt, optional labels/*.label) into an MRPT rawlog. Each scan becomes "
-        "a CObservationComment 'kitti frame N' (its number in the sequence), a "
+        "a CObservationComment 'kitti frame N' (its number in the sequence), with --odometry a "
+        "CObservationOdometry, a "
         "CObservationRobotPose (sensor label 'GROUND_TRUTH': the LiDAR pose in the world, "
         "inv(Tr) * P_i * Tr) and a CObservationPointCloud (sensor label 'LIDAR', a "
         "CPointsMapXYZI in the LiDAR frame, points in file order).",
@@ -70,6 +74,25 @@ struct Cli
         "Write the DynamicMap benchmark layout instead of a rawlog: <output>/pcd/NNNNNN.pcd "
         "(binary PCD, x y z intensity in the world frame, the LiDAR pose in VIEWPOINT), what "
         "that benchmark's methods (DUFOMap, OctoMap, ...) and hif-clean read",
+        cmd};
+    TCLAP::SwitchArg odometry{
+        "", "odometry",
+        "Also write each scan's LiDAR pose as a CObservationOdometry (sensor label "
+        "'GROUND_TRUTH_ODOMETRY': x, y and heading of the same ground-truth pose, not a wheel "
+        "odometry), before its CObservationRobotPose: RawLogViewer's 'map from odometry' then "
+        "follows the trajectory (hif-clean reads the 3D "
+        "CObservationRobotPose and passes the odometry by)",
+        cmd};
+    TCLAP::ValueArg<double> start_time{
+        "",
+        "start-time",
+        "Time of the sequence's first time in times.txt, seconds since 1970-01-01 UTC (e.g. "
+        "$(date -u -d '2011-09-30 12:40:00' +%s)): every scan's time stamp becomes it plus "
+        "its times.txt time (default: 0, so a KITTI sequence's stamps start in 1970, as its "
+        "times.txt counts from the sequence's start)",
+        false,
+        0.0,
+        "seconds",
         cmd};
     TCLAP::SwitchArg overwrite{"", "overwrite", "Replace the output if it exists", cmd};
     TCLAP::SwitchArg quiet{"q", "quiet", "No progress bar", cmd};
@@ -121,16 +144,21 @@ int run(Cli& cli)
     if (first > last)
         throw std::runtime_error("--first " + std::to_string(first) + " is after --last " +
                                  std::to_string(last));
+    const double start = cli.start_time.getValue();
+    if (!std::isfinite(start) || start < 0 || start > 4e9)
+        throw std::runtime_error("--start-time " + std::to_string(start) +
+                                 ": give seconds since 1970-01-01 UTC (0 to 4e9)");
     const int level = cli.compress.getValue();
     if (level < 0 || level > 9)
         throw std::runtime_error("--compress-level " + std::to_string(level) + " is not in 0-9");
     const std::string out_file = cli.output.getValue();
     if (cli.dynamicmap.getValue())
     {
-        if (cli.external.getValue() || cli.compress.isSet())
+        if (cli.external.getValue() || cli.compress.isSet() || cli.odometry.getValue() ||
+            cli.start_time.isSet())
             throw std::runtime_error(
-                "--external and --compress-level apply to rawlogs, not to "
-                "--dynamicmap");
+                "--external, --compress-level, --odometry and --start-time apply to rawlogs, "
+                "not to --dynamicmap");
         std::cout << tag << " sequence '" << seq.dir() << "': scans " << first << ".." << last
                   << " of " << n << " into the DynamicMap layout '" << out_file << "/pcd'\n";
         hif::apps::RunFiles files;
@@ -194,7 +222,7 @@ int run(Cli& cli)
     for (std::size_t i = first; i <= last; ++i)
     {
         // KITTI times are seconds from the start of the sequence.
-        const auto stamp = mrpt::Clock::fromDouble(seq.time(i));
+        const auto stamp = mrpt::Clock::fromDouble(start + seq.time(i));
         // The scan's number in the sequence, so that hif-clean names its predictions after it.
         auto frame = mrpt::obs::CObservationComment::Create();
         frame->sensorLabel = "KITTI_FRAME";
@@ -224,7 +252,16 @@ int run(Cli& cli)
                 throw std::runtime_error("error reading '" + seq.scanFile(i) + "'");
             scan->pointcloud = cloud;
         }
-        hif::apps::writeOrThrow(written, [&] { arch << *frame << *pose_obs << *scan; });
+        hif::apps::writeOrThrow(written, [&] { arch << *frame; });
+        if (cli.odometry.getValue())
+        {
+            auto odo = mrpt::obs::CObservationOdometry::Create();
+            odo->sensorLabel = "GROUND_TRUTH_ODOMETRY";
+            odo->timestamp = stamp;
+            odo->odometry = mrpt::poses::CPose2D(pose_obs->pose.mean);
+            hif::apps::writeOrThrow(written, [&] { arch << *odo; });
+        }
+        hif::apps::writeOrThrow(written, [&] { arch << *pose_obs << *scan; });
         progress.update(i - first + 1);
     }
     progress.finish();

@@ -13,11 +13,14 @@
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CObservation2DRangeScan.h>
 #include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/obs/CObservationRobotPose.h>
 #include <mrpt/obs/CObservationVelodyneScan.h>
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/opengl/COpenGLScene.h>
+#include <mrpt/opengl/CPointCloud.h>
+#include <mrpt/opengl/CSetOfTriangles.h>
 #include <mrpt/serialization/CArchive.h>
 
 #include <opencv2/imgcodecs.hpp>
@@ -395,11 +398,28 @@ TEST_F(SyntheticPipeline, ThreadsAndHeldScansGiveIdenticalResults)
     EXPECT_TRUE(fs::exists(a + "/map.png"));
     EXPECT_FALSE(fs::exists(b + "/map.png"));
     EXPECT_FALSE(fs::exists(a + "/map.3Dscene"));
+    // The 3D view draws what the map decided: a box (10 triangles) for each static interval of
+    // the saved map, none for the others, and each removed point in red.
+    const json sb0 = readJson(b + "/summary.json");
     mrpt::opengl::COpenGLScene scene;
     ASSERT_TRUE(scene.loadFromFile(b + "/map.3Dscene"));
-    EXPECT_TRUE(scene.getByName("hif::CHeightIntervalMap"));
+    const auto boxes = std::dynamic_pointer_cast<mrpt::opengl::CSetOfTriangles>(
+        scene.getByName("hif::CHeightIntervalMap"));
+    ASSERT_TRUE(boxes);
+    hif::CHeightIntervalMap saved;
+    saved.loadFromFile(b + "/map.hifmap");
+    std::size_t static_intervals = 0;
+    for (const auto& [idx, pillar] : saved.grid().sortedPillars())
+        for (const hif::Interval& iv : pillar->intervals)
+            static_intervals += saved.grid().isStaticLogOdds(iv.logodds);
+    EXPECT_LT(static_intervals, saved.intervalCount());
+    EXPECT_EQ(boxes->getTrianglesCount(), 10 * static_intervals);
+    const auto removed = std::dynamic_pointer_cast<mrpt::opengl::CPointCloud>(
+        scene.getByName("hif: removed points"));
+    ASSERT_TRUE(removed);
+    EXPECT_EQ(removed->size(),
+              sb0["points_removed"].get<std::size_t>() - sb0["points_invalid"].get<std::size_t>());
     // Every point with its intensity, its class (0 kept, 1 removed) and its class's colour.
-    const json sb0 = readJson(b + "/summary.json");
     double intensities = 0;
     const auto classes = classesOf(b + "/classes.ply", intensities);
     EXPECT_EQ(classes.size(), 2u);
@@ -868,6 +888,79 @@ TEST_F(SyntheticPipeline, RawlogOutHoldsTheKeptPointsForMrptTools)
         const std::string info = hif::test::bytesOf(d + "/info.txt");
         EXPECT_NE(info.find("Overall number of objects         : 60"), std::string::npos) << info;
     }
+}
+
+// kitti2rawlog --odometry: the trajectory also as CObservationOdometry (x, y, heading of each
+// scan's ground-truth pose), what RawLogViewer's map from odometry reads;
+// --start-time: real time stamps. hif-clean passes the odometry by: the same result.
+TEST_F(SyntheticPipeline, Kitti2rawlogWritesTheTrajectoryAsOdometryAndRealTimes)
+{
+    const std::string d = root_ + "/odometry";
+    fs::remove_all(d);
+    fs::create_directories(d);
+    const double start = 1317386400.0;  // 2011-09-30 12:40:00 UTC
+    auto r = runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + d +
+                                        "/odo.rawlog -q --odometry "
+                                        "--start-time 1317386400");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const hif::io::KittiSequence seq(root_ + "/seq");
+    mrpt::io::CFileGZInputStream in(d + "/odo.rawlog");
+    auto arch = mrpt::serialization::archiveFrom(in);
+    std::vector<mrpt::obs::CObservationOdometry::Ptr> odometry;
+    std::vector<mrpt::obs::CObservationRobotPose::Ptr> poses;
+    std::vector<mrpt::Clock::time_point> scan_times;
+    for (;;)
+    {
+        mrpt::serialization::CSerializable::Ptr obj;
+        try
+        {
+            obj = arch.ReadObject();
+        }
+        catch (const mrpt::serialization::CExceptionEOF&)
+        {
+            break;
+        }
+        if (auto o = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obj))
+        {
+            EXPECT_EQ(poses.size(), odometry.size()) << "the odometry comes before its pose";
+            odometry.push_back(o);
+        }
+        if (auto p = std::dynamic_pointer_cast<mrpt::obs::CObservationRobotPose>(obj))
+            poses.push_back(p);
+        if (auto s = std::dynamic_pointer_cast<mrpt::obs::CObservationPointCloud>(obj))
+            scan_times.push_back(s->timestamp);
+    }
+    ASSERT_EQ(odometry.size(), seq.size());
+    ASSERT_EQ(poses.size(), seq.size());
+    ASSERT_EQ(scan_times.size(), seq.size());
+    double travelled = 0;
+    for (std::size_t i = 0; i < seq.size(); ++i)
+    {
+        const mrpt::poses::CPose3D& p = poses[i]->pose.mean;
+        EXPECT_NEAR(odometry[i]->odometry.x(), p.x(), 1e-9);
+        EXPECT_NEAR(odometry[i]->odometry.y(), p.y(), 1e-9);
+        EXPECT_NEAR(odometry[i]->odometry.phi(), p.yaw(), 1e-9);
+        EXPECT_EQ(odometry[i]->timestamp, scan_times[i]);
+        EXPECT_NEAR(mrpt::Clock::toDouble(scan_times[i]), start + seq.time(i), 1e-6);
+        if (i > 0) travelled += (odometry[i]->odometry - odometry[i - 1]->odometry).norm();
+    }
+    EXPECT_GT(travelled, 1.0);  // the sensor moves in the synthetic clip
+    // hif-clean: the same points kept as from the rawlog without odometry, no object skipped.
+    r = runApp("hif-clean", "-i " + d + "/odo.rawlog -o " + d + "/clean -q --no-png");
+    ASSERT_EQ(r.code, 0) << r.output;
+    r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + d + "/plain -q --no-png");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const json with = readJson(d + "/clean/summary.json");
+    EXPECT_EQ(with["points_kept"], readJson(d + "/plain/summary.json")["points_kept"]);
+    EXPECT_EQ(with["skipped_objects"], 0);
+    expectError(runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + d +
+                                           "/x -q --dynamicmap "
+                                           "--odometry"),
+                "--odometry and --start-time apply to rawlogs");
+    expectError(runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + d +
+                                           "/y.rawlog -q "
+                                           "--start-time -5"),
+                "--start-time");
 }
 
 // Rawlogs as other MRPT tools write them: sensory frames (actions, then a frame with the pose

@@ -227,7 +227,7 @@ TEST(CHeightIntervalMap, CopyIsDeepAndEqual)
     EXPECT_NEAR(a.staticProbability({0.5, 0.5, 0.0}), 0.571428571, 1e-6);
 }
 
-TEST(CHeightIntervalMap, VisualizationHasOneBoxPerInterval)
+TEST(CHeightIntervalMap, VisualizationDrawsWhatTheMapKeeps)
 {
     CHeightIntervalMap map;
     ASSERT_TRUE(map.insertObservation(*cloud({{0.5, 0.5, 0.0}, {0.5, 0.5, 2.0}, {7.5, 0.5, 0.0}})));
@@ -236,7 +236,31 @@ TEST(CHeightIntervalMap, VisualizationHasOneBoxPerInterval)
     map.getVisualizationInto(objs);
     auto tris = objs.getByClass<mrpt::opengl::CSetOfTriangles>();
     ASSERT_TRUE(tris);
-    EXPECT_EQ(tris->getTrianglesCount(), 3u * 12u);
+    // Each static interval: a box of its top and four sides (10 triangles).
+    EXPECT_EQ(tris->getTrianglesCount(), 3u * 10u);
+
+    // The box at 1 m that later scans see through (as in ClassifyAndLikelihoodFollowTheIntervals)
+    // is below the threshold: its points are classified dynamic, and it is not drawn.
+    CHeightIntervalMap seen;
+    seen.insertionOptions.miss_needs_beam = false;
+    ASSERT_TRUE(seen.insertObservation(*cloud({{0.5, 0.5, 0.0}, {0.5, 0.5, 1.0}})));
+    for (int k = 0; k < 5; ++k) ASSERT_TRUE(seen.insertObservation(*cloud({{0.5, 0.5, 0.0}})));
+    ASSERT_EQ(seen.intervalCount(), 2u);
+    ASSERT_FALSE(seen.isStatic({0.5, 0.5, 1.0}));
+    mrpt::opengl::CSetOfObjects kept;
+    seen.getVisualizationInto(kept);
+    tris = kept.getByClass<mrpt::opengl::CSetOfTriangles>();
+    ASSERT_TRUE(tris);
+    ASSERT_EQ(tris->getTrianglesCount(), 10u);
+    // The one box drawn is the ground's: every vertex below the vacated box.
+    for (std::size_t i = 0; i < tris->getTrianglesCount(); ++i)
+    {
+        mrpt::opengl::TTriangle t;
+        tris->getTriangle(i, t);
+        for (int k = 0; k < 3; ++k) EXPECT_LT(t.z(k), 0.9f);
+        // Coloured by height, never red (kept for what is removed).
+        EXPECT_LT(t.r(0), 200);
+    }
 }
 
 TEST(CHeightIntervalMap, AMapInUtmCoordinatesIsDrawnAndListedToTheMillimetre)

@@ -23,7 +23,7 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
     constexpr uint8_t kUnset = 2;
     is_dynamic.assign(pts.size, kUnset);
 
-    const bool prior_static = logit(params_.p_empty_init) >= static_logodds_;
+    const bool prior_static = isStaticLogOdds(logit(params_.p_empty_init));
     std::atomic<std::size_t> n_static{0};
     detail::forRanges(arena_.get(), scan.pillarCount(), 256,
                       [&](std::size_t p0, std::size_t p1)
@@ -39,8 +39,7 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
                                   if (pil)
                                   {
                                       const Interval* iv = findInterval(*pil, scan.cells[k]);
-                                      stat = (iv ? iv->logodds : pil->logodds_empty) >=
-                                             static_logodds_;
+                                      stat = isStaticLogOdds(iv ? iv->logodds : pil->logodds_empty);
                                   }
                                   is_dynamic[scan.index[k]] = stat ? 0 : 1;
                                   local_static += stat;

@@ -36,7 +36,6 @@ struct GridAccess
     /** Null when the grid runs on one thread. */
     static ThreadArena* arena(const PillarGrid& g) { return g.arena_.get(); }
     static Workspace& workspace(PillarGrid& g) { return g.workspace_.get(); }
-    static double staticLogOdds(const PillarGrid& g) { return g.static_logodds_; }
 };
 
 }  // namespace hif::detail

@@ -122,7 +122,7 @@ double PillarGrid::staticProbability(double x, double y, double z) const
 
 bool PillarGrid::isStatic(double x, double y, double z) const
 {
-    return logOddsAt(x, y, z) >= static_logodds_;
+    return isStaticLogOdds(logOddsAt(x, y, z));
 }
 
 std::size_t PillarGrid::intervalCount() const

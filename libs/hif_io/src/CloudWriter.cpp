@@ -194,6 +194,7 @@ std::string CloudWriter::header(const std::string& file, std::size_t count) cons
     if (fields_.label) tail.push_back({"uchar", "class", "1", "U"});
     if (fields_.scan) tail.push_back({"uint", "scan", "4", "U"});
     if (fields_.time) tail.push_back({"double", "time", "8", "F"});
+    if (fields_.points) tail.push_back({"uint", "points", "4", "U"});
     if (endsWith(file, ".ply"))
     {
         std::string h =

@@ -216,7 +216,6 @@ float CHeightIntervalMap::compute3DMatchingRatio(const mrpt::maps::CMetricMap* o
     const auto* pts = dynamic_cast<const mrpt::maps::CPointsMap*>(otherMap);
     if (!pts || pts->empty()) return 0.0f;
     const GridGeometry& geo = geometry();
-    const double threshold = params().static_threshold;
     const double d = mp.maxDistForCorr;
     const auto& xs = pts->getPointsBufferRef_x();
     const auto& ys = pts->getPointsBufferRef_y();
@@ -229,7 +228,7 @@ float CHeightIntervalMap::compute3DMatchingRatio(const mrpt::maps::CMetricMap* o
         const Pillar* pillar = idx ? grid_.findPillar(*idx) : nullptr;
         if (!pillar) continue;
         for (const Interval& iv : pillar->intervals)
-            if (logistic(iv.logodds) >= threshold && w.z >= geo.cellBottom(iv.lo) - d &&
+            if (grid_.isStaticLogOdds(iv.logodds) && w.z >= geo.cellBottom(iv.lo) - d &&
                 w.z <= geo.cellBottom(iv.hi) + d)
             {
                 ++matched;

@@ -135,6 +135,9 @@ public:
     /** True when the log-odds of staticProbability(x, y, z) is at least
      *  logit(Params::static_threshold) (that is, the probability is at least the threshold). */
     [[nodiscard]] bool isStatic(double x, double y, double z) const;
+    /** The one rule of what is static: a log-odds (an interval's, or a pillar's p_empty) of at
+     *  least logit(Params::static_threshold). */
+    [[nodiscard]] bool isStaticLogOdds(double logodds) const { return logodds >= static_logodds_; }
     /** @} */
 
     /** @name Settings

@@ -157,8 +157,10 @@ public:
      * @{ */
     [[nodiscard]] bool isEmpty() const override;
     [[nodiscard]] std::string asString() const override;
-    /** Every interval as a box over its pillar, coloured from red (p_min, dynamic) to green
-     *  (p_max, static). */
+    /** What the map keeps: every static interval (P(static) at least the static_threshold) as a
+     *  box over its pillar (its top and sides), coloured by the height of its top from blue
+     *  (low) through green to yellow (high). Intervals below the threshold (seen through, or
+     *  never confirmed) are not drawn: the points in them are the ones classified dynamic. */
     void getVisualizationInto(mrpt::opengl::CSetOfObjects& o) const override;
     /** Writes `<prefix>_intervals.txt` (one interval per line: x_min y_min x_max y_max z_bottom
      *  z_top p_static) and `<prefix>_3D.3Dscene` (the visualization). */

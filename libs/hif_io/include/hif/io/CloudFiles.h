@@ -29,6 +29,7 @@ struct PointFields
     bool label = false;     ///< uchar class (hif-clean: 0 kept, 1 removed)
     bool scan = false;      ///< uint32 scan: the number of the point's scan
     bool time = false;      ///< double time: its scan's time, seconds
+    bool points = false;    ///< uint32 points: how many points were merged into it
 
     /** x y z and a colour only. */
     static PointFields colourOnly()
@@ -42,7 +43,7 @@ struct PointFields
     [[nodiscard]] std::size_t tailBytes() const
     {
         return (intensity ? 4 : 0) + (colour ? 3 : 0) + (label ? 1 : 0) + (scan ? 4 : 0) +
-               (time ? 8 : 0);
+               (time ? 8 : 0) + (points ? 4 : 0);
     }
 };
 
@@ -55,6 +56,7 @@ struct CloudPoint
     uint8_t label = 0;
     uint32_t scan = 0;
     double time = 0;
+    uint32_t points = 0;
 };
 
 /** Writes the same points to one or more files, each a binary little-endian PLY or a binary PCD
@@ -129,6 +131,11 @@ public:
             std::memcpy(v + at, &p.time, 8);
             at += 8;
         }
+        if (fields_.points)
+        {
+            std::memcpy(v + at, &p.points, 4);
+            at += 4;
+        }
         append(v, at);
     }
     /** A point of x y z and intensity. */
@@ -191,7 +198,7 @@ private:
     bool double_ = false;  ///< float64 coordinates
     std::size_t count_ = 0;
     PointFields fields_;
-    static constexpr std::size_t kMaxTail = 20;  ///< tailBytes() with every field
+    static constexpr std::size_t kMaxTail = 24;  ///< tailBytes() with every field
     std::vector<char> buf_;                      ///< points not yet written
     std::size_t used_ = 0;                       ///< bytes of buf_ in use
     Eigen::Isometry3d viewpoint_ = Eigen::Isometry3d::Identity();
