@@ -59,6 +59,25 @@ using hif::test::workDir;
 
 namespace
 {
+/** Every object of a rawlog (gzip-compressed or not), in order. */
+std::vector<mrpt::serialization::CSerializable::Ptr> rawlogObjects(const std::string& file)
+{
+    mrpt::io::CFileGZInputStream in(file);
+    auto arch = mrpt::serialization::archiveFrom(in);
+    std::vector<mrpt::serialization::CSerializable::Ptr> objects;
+    for (;;)
+    {
+        try
+        {
+            objects.push_back(arch.ReadObject());
+        }
+        catch (const mrpt::serialization::CExceptionEOF&)
+        {
+            return objects;
+        }
+    }
+}
+
 /** How many points of each colour (red, green, blue packed) a coloured PLY holds. */
 std::map<uint32_t, std::size_t> coloursOf(const std::string& file)
 {
@@ -904,22 +923,11 @@ TEST_F(SyntheticPipeline, Kitti2rawlogWritesTheTrajectoryAsOdometryAndRealTimes)
                                         "--start-time 1317386400");
     ASSERT_EQ(r.code, 0) << r.output;
     const hif::io::KittiSequence seq(root_ + "/seq");
-    mrpt::io::CFileGZInputStream in(d + "/odo.rawlog");
-    auto arch = mrpt::serialization::archiveFrom(in);
     std::vector<mrpt::obs::CObservationOdometry::Ptr> odometry;
     std::vector<mrpt::obs::CObservationRobotPose::Ptr> poses;
     std::vector<mrpt::Clock::time_point> scan_times;
-    for (;;)
+    for (const auto& obj : rawlogObjects(d + "/odo.rawlog"))
     {
-        mrpt::serialization::CSerializable::Ptr obj;
-        try
-        {
-            obj = arch.ReadObject();
-        }
-        catch (const mrpt::serialization::CExceptionEOF&)
-        {
-            break;
-        }
         if (auto o = std::dynamic_pointer_cast<mrpt::obs::CObservationOdometry>(obj))
         {
             EXPECT_EQ(poses.size(), odometry.size()) << "the odometry comes before its pose";
@@ -1068,20 +1076,9 @@ TEST(HifClean, ReadsSensoryFramesAnd2DAnd3DAndVelodyneScansAndWritesThemBack)
         EXPECT_EQ(s["scans"], 5);
         EXPECT_GT(s["points_removed"].get<std::size_t>(), 0u) << "the box is removed";
         // The cleaned rawlog: the same kind of scan, only the kept points.
-        mrpt::io::CFileGZInputStream in(out + ".clean.rawlog");
-        auto arch = mrpt::serialization::archiveFrom(in);
         std::size_t points = 0, scans = 0;
-        for (;;)
+        for (const auto& o : rawlogObjects(out + ".clean.rawlog"))
         {
-            mrpt::serialization::CSerializable::Ptr o;
-            try
-            {
-                o = arch.ReadObject();
-            }
-            catch (const mrpt::serialization::CExceptionEOF&)
-            {
-                break;
-            }
             if (auto o3d = std::dynamic_pointer_cast<CObservation3DRangeScan>(o))
             {
                 ++scans;
