@@ -5,25 +5,12 @@
  */
 #include "VoxelMap.h"
 
+#include <absl/container/flat_hash_map.h>
+
 #include <cmath>
-#include <unordered_map>
 
 namespace hif::slam
 {
-namespace
-{
-/** 21 bits per axis, offset so that +-10 km from the origin fits at 1 cm voxels. */
-uint64_t packVoxel(double x, double y, double z, double voxel)
-{
-    const auto c = [voxel](double v)
-    {
-        return static_cast<uint64_t>(static_cast<int64_t>(std::floor(v / voxel)) + (1 << 20)) &
-               0x1FFFFF;
-    };
-    return (c(x) << 42) | (c(y) << 21) | c(z);
-}
-}  // namespace
-
 mrpt::maps::CSimplePointsMap thinToVoxels(const std::vector<float>& x, const std::vector<float>& y,
                                           const std::vector<float>& z, double voxel,
                                           double min_range, double max_range)
@@ -32,7 +19,7 @@ mrpt::maps::CSimplePointsMap thinToVoxels(const std::vector<float>& x, const std
     {
         double x = 0, y = 0, z = 0, n = 0;
     };
-    std::unordered_map<uint64_t, std::size_t> index;
+    absl::flat_hash_map<io::VoxelKey, std::size_t> index;
     std::vector<Sum> sums;
     index.reserve(x.size() / 8);
     const double min2 = min_range * min_range, max2 = max_range * max_range;
@@ -41,7 +28,9 @@ mrpt::maps::CSimplePointsMap thinToVoxels(const std::vector<float>& x, const std
         if (!std::isfinite(x[i]) || !std::isfinite(y[i]) || !std::isfinite(z[i])) continue;
         const double r2 = double(x[i]) * x[i] + double(y[i]) * y[i] + double(z[i]) * z[i];
         if (r2 < min2 || r2 > max2) continue;
-        const auto [it, added] = index.try_emplace(packVoxel(x[i], y[i], z[i], voxel), sums.size());
+        const auto key = io::voxelKeyOf(x[i], y[i], z[i], voxel);
+        if (!key) continue;  // more than 2^31 voxels away: not a point of this scan's surroundings
+        const auto [it, added] = index.try_emplace(*key, sums.size());
         if (added) sums.emplace_back();
         Sum& s = sums[it->second];
         s.x += x[i];
@@ -57,7 +46,11 @@ mrpt::maps::CSimplePointsMap thinToVoxels(const std::vector<float>& x, const std
     return out;
 }
 
-uint64_t VoxelMap::key(float x, float y, float z) const { return packVoxel(x, y, z, voxel_); }
+bool VoxelMap::occupy(float x, float y, float z)
+{
+    const auto key = io::voxelKeyOf(x, y, z, voxel_);
+    return key && occupied_.insert(*key).second;
+}
 
 void VoxelMap::add(const mrpt::maps::CSimplePointsMap& scan, const mrpt::poses::CPose3D& pose)
 {
@@ -68,7 +61,7 @@ void VoxelMap::add(const mrpt::maps::CSimplePointsMap& scan, const mrpt::poses::
     {
         double gx, gy, gz;
         pose.composePoint(xs[i], ys[i], zs[i], gx, gy, gz);
-        if (occupied_.insert(key(float(gx), float(gy), float(gz))).second)
+        if (occupy(float(gx), float(gy), float(gz)))
             points_.insertPointFast(float(gx), float(gy), float(gz));
     }
     points_.mark_as_modified();  // its KD-tree is built again for the next alignment
@@ -87,8 +80,7 @@ void VoxelMap::keepWithin(const mrpt::math::TPoint3D& centre, double radius)
     {
         const double dx = xs[i] - centre.x, dy = ys[i] - centre.y;
         if (dx * dx + dy * dy > r2) continue;
-        kept.insertPointFast(xs[i], ys[i], zs[i]);
-        occupied_.insert(key(xs[i], ys[i], zs[i]));
+        if (occupy(xs[i], ys[i], zs[i])) kept.insertPointFast(xs[i], ys[i], zs[i]);
     }
     kept.mark_as_modified();
     points_ = std::move(kept);

@@ -9,9 +9,12 @@
 #include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/poses/CPose3D.h>
 
+#include <absl/container/flat_hash_set.h>
+
 #include <cstdint>
-#include <unordered_set>
 #include <vector>
+
+#include "hif/io/VoxelKey.h"
 
 namespace hif::slam
 {
@@ -40,11 +43,13 @@ public:
     [[nodiscard]] std::size_t size() const { return points_.size(); }
 
 private:
-    [[nodiscard]] uint64_t key(float x, float y, float z) const;
+    /** Marks the voxel of (x, y, z) occupied: false when it was already (or lies more than
+     *  2^31 voxels away). */
+    bool occupy(float x, float y, float z);
 
     double voxel_;
     mrpt::maps::CSimplePointsMap points_;
-    std::unordered_set<uint64_t> occupied_;
+    absl::flat_hash_set<io::VoxelKey> occupied_;  ///< exact keys: far voxels never collide
 };
 
 }  // namespace hif::slam

@@ -12,6 +12,7 @@
 #include <map>
 #include <random>
 
+#include "hif/io/VoxelKey.h"
 #include "hif/io/VoxelMerger.h"
 #include "work_dir.h"
 
@@ -175,4 +176,23 @@ TEST(VoxelMerger, RefusesWhatItCannotMerge)
         EXPECT_NE(std::string(e.what()).find("missing/dir/run0.part"), std::string::npos)
             << e.what();
     }
+}
+
+TEST(VoxelKey, IsExactFarFromTheOriginAndRefusesWhatDoesNotFit)
+{
+    using hif::io::voxelKeyOf;
+    // 2^21 voxels apart: a key packed into 21 bits per axis made these one voxel.
+    const auto a = voxelKeyOf(0.5, 0.5, 0.5, 1.0);
+    const auto b = voxelKeyOf(0.5 + double(1 << 21), 0.5, 0.5, 1.0);
+    ASSERT_TRUE(a && b);
+    EXPECT_NE(*a, *b);
+    EXPECT_EQ(b->i, 1 << 21);
+    // Negative coordinates round down, not toward zero.
+    EXPECT_EQ(voxelKeyOf(-0.25, 0.0, 0.0, 0.5)->i, -1);
+    // UTM at 1 cm: some 4.6e8 voxels from the origin, still exact.
+    const auto utm = voxelKeyOf(4.6e6 + 0.005, 0.0, 0.0, 0.01);
+    ASSERT_TRUE(utm);
+    EXPECT_EQ(utm->i, 460000000);
+    EXPECT_FALSE(voxelKeyOf(3e7, 0.0, 0.0, 0.01));  // 3e9 voxels
+    EXPECT_FALSE(voxelKeyOf(std::nan(""), 0.0, 0.0, 1.0));
 }

@@ -18,31 +18,13 @@
 #include <stdexcept>
 
 #include "hif/io/FileError.h"
+#include "hif/io/VoxelKey.h"
 
 namespace hif::io
 {
 namespace
 {
-/** A voxel's indices along x, y and z. */
-struct Key
-{
-    int32_t i = 0, j = 0, k = 0;
-
-    friend bool operator==(const Key& a, const Key& b)
-    {
-        return a.i == b.i && a.j == b.j && a.k == b.k;
-    }
-    friend bool operator!=(const Key& a, const Key& b) { return !(a == b); }
-    friend bool operator<(const Key& a, const Key& b)
-    {
-        return a.i != b.i ? a.i < b.i : (a.j != b.j ? a.j < b.j : a.k < b.k);
-    }
-    template <typename H>
-    friend H AbslHashValue(H h, const Key& key)
-    {
-        return H::combine(std::move(h), key.i, key.j, key.k);
-    }
-};
+using Key = VoxelKey;
 
 /** A voxel's sums: of the offsets of its points from its corner, and of their intensities. */
 struct Sums
@@ -204,24 +186,14 @@ void VoxelMerger::add(double x, double y, double z, float intensity)
 {
     if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z)) return;
     if (finished_) throw std::logic_error("VoxelMerger::add() after finish()");
-    int32_t index[3];
-    double corner[3];
-    const double p[3] = {x, y, z};
-    for (int a = 0; a < 3; ++a)
-    {
-        const double i = std::floor(p[a] / voxel_);
-        if (i < double(std::numeric_limits<int32_t>::min()) ||
-            i > double(std::numeric_limits<int32_t>::max()))
-            throw std::runtime_error("a point at (" + std::to_string(x) + ", " + std::to_string(y) +
-                                     ", " + std::to_string(z) + ") lies more than 2^31 voxels of " +
-                                     std::to_string(voxel_) +
-                                     " m from the origin: use larger voxels");
-        index[a] = static_cast<int32_t>(i);
-        corner[a] = i * voxel_;
-    }
+    const std::optional<Key> key = voxelKeyOf(x, y, z, voxel_);
+    if (!key)
+        throw std::runtime_error("a point at (" + std::to_string(x) + ", " + std::to_string(y) +
+                                 ", " + std::to_string(z) + ") lies more than 2^31 voxels of " +
+                                 std::to_string(voxel_) + " m from the origin: use larger voxels");
     Impl& m = *impl_;
-    m.pending[m.pending_count++] = {Key{index[0], index[1], index[2]}, x - corner[0], y - corner[1],
-                                    z - corner[2], intensity};
+    m.pending[m.pending_count++] = {*key, x - double(key->i) * voxel_, y - double(key->j) * voxel_,
+                                    z - double(key->k) * voxel_, intensity};
     ++points_;
     if (m.pending_count == Impl::kBatch) addPending();
 }
