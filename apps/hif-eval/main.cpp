@@ -128,17 +128,13 @@ std::vector<double> ranges(const std::string& dir, const std::string& stem, std:
     const fs::path bin = fs::path(dir) / (stem + ".bin"), pcd = fs::path(dir) / (stem + ".pcd");
     if (fs::exists(bin))
     {
-        std::ifstream f(bin, std::ios::binary);
-        std::vector<float> p(4 * n);
-        if (fs::file_size(bin) != p.size() * sizeof(float) ||
-            !f.read(reinterpret_cast<char*>(p.data()),
-                    static_cast<std::streamsize>(p.size() * sizeof(float))))
+        const hif::io::Cloud c = hif::io::readKittiBin(bin.string());
+        if (c.size() != n)
             hif::io::throwFileError(bin.string(), "does not hold the " + std::to_string(n) +
                                                       " points of its label file");
         for (std::size_t i = 0; i < n; ++i)
-            r.push_back(std::sqrt(double(p[4 * i]) * p[4 * i] +
-                                  double(p[4 * i + 1]) * p[4 * i + 1] +
-                                  double(p[4 * i + 2]) * p[4 * i + 2]));
+            r.push_back(std::sqrt(double(c.x[i]) * c.x[i] + double(c.y[i]) * c.y[i] +
+                                  double(c.z[i]) * c.z[i]));
         return r;
     }
     if (fs::exists(pcd))

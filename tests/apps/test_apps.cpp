@@ -244,6 +244,18 @@ TEST(HifEval, AgreesWithAHandCountedExample)
     EXPECT_DOUBLE_EQ(j2["with_ego_points"]["DA"].get<double>(), 80.0);
     EXPECT_DOUBLE_EQ(j2["with_ego_points"]["SA"].get<double>(), 75.0);
 
+    // A scan of another length than its labels, or a truncated one, is named.
+    writeBin("000001.bin", {1, 60});
+    const auto short_scan =
+        runApp("hif-eval", "--labels " + d + "/labels --predictions " + d + "/pred --scans " + d +
+                               "/velodyne --json " + d + "/scores3.json --overwrite");
+    expectError(short_scan, "000001.bin' does not hold the 3 points of its label file");
+    fs::resize_file(d + "/velodyne/000001.bin", 20);
+    expectError(
+        runApp("hif-eval", "--labels " + d + "/labels --predictions " + d + "/pred --scans " + d +
+                               "/velodyne --json " + d + "/scores3.json --overwrite"),
+        "000001.bin' is 20 bytes, not a multiple of 16");
+
     // A prediction whose size differs from its labels is an error naming both files.
     hif::io::writeLabels(d + "/pred/000001.label", {251, 9});
     const auto bad = runApp("hif-eval", "--labels " + d + "/labels --predictions " + d + "/pred");

@@ -169,9 +169,8 @@ std::string KittiSequence::labelFile(std::size_t i) const
     return (fs::path(dir_) / "labels" / (frameName(i) + ".label")).string();
 }
 
-std::size_t KittiSequence::pointCount(std::size_t i) const
+std::size_t kittiBinPointCount(const std::string& f)
 {
-    const std::string f = scanFile(i);
     std::error_code ec;
     const auto bytes = fs::file_size(f, ec);
     if (ec) throwFileError(f, "has a size that cannot be read: " + ec.message());
@@ -183,10 +182,9 @@ std::size_t KittiSequence::pointCount(std::size_t i) const
     return static_cast<std::size_t>(bytes / 16);
 }
 
-Cloud KittiSequence::readScan(std::size_t i) const
+Cloud readKittiBin(const std::string& f)
 {
-    const std::string f = scanFile(i);
-    const std::size_t n = pointCount(i);
+    const std::size_t n = kittiBinPointCount(f);
     std::ifstream in(f, std::ios::binary);
     if (!in) throwFileError(f, "cannot be opened");
     std::vector<float> raw(4 * n);
@@ -204,5 +202,12 @@ Cloud KittiSequence::readScan(std::size_t i) const
     }
     return c;
 }
+
+std::size_t KittiSequence::pointCount(std::size_t i) const
+{
+    return kittiBinPointCount(scanFile(i));
+}
+
+Cloud KittiSequence::readScan(std::size_t i) const { return readKittiBin(scanFile(i)); }
 
 }  // namespace hif::io

@@ -57,6 +57,13 @@ private:
     std::vector<double> times_;
 };
 
+/** The number of points of a KITTI .bin scan (x y z intensity, float32 each), from its size;
+ *  throws naming the file if it is empty, unreadable or not a multiple of 16 bytes. */
+[[nodiscard]] std::size_t kittiBinPointCount(const std::string& file);
+/** The points of a KITTI .bin scan, in file order. Throws naming the file as
+ *  kittiBinPointCount() does, or if it cannot be read whole. */
+[[nodiscard]] Cloud readKittiBin(const std::string& file);
+
 /** "%06d" file stem used by KITTI and SemanticKITTI. */
 [[nodiscard]] std::string frameName(std::size_t i);
 
