@@ -114,6 +114,11 @@ TEST(CHeightIntervalMap, Inserts2DAnd3DRangeScansAtTheirPoses)
     EXPECT_TRUE(map.isStatic({100.5, -4.5, 0.5}));        // -90 deg beam: (100, -5, 0.5)
     EXPECT_TRUE(map.isStatic({105.0, 0.5, 0.5}));         // 0 deg beam
     EXPECT_EQ(map.grid().findPillar({100, 5}), nullptr);  // invalid beam not inserted
+    // Scanning left to right, the first beam is at +90 degrees (MRPT's convention).
+    scan.rightToLeft = false;
+    ASSERT_TRUE(map.insertObservation(scan, CPose3D(200, 0, 0, 0, 0, 0)));
+    EXPECT_TRUE(map.isStatic({200.5, 4.5, 0.5}));
+    EXPECT_EQ(map.grid().findPillar({200, -5}), nullptr);
 
     mrpt::obs::CObservation3DRangeScan o3d;
     o3d.hasPoints3D = true;

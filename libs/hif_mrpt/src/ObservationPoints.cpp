@@ -41,6 +41,13 @@ bool sensorPoints(const mrpt::obs::CObservation& obs, SensorPoints& out)
     auto fromStorage = [&]() {
         out.view = {storage[0].data(), storage[1].data(), storage[2].data(), storage[0].size()};
     };
+    auto fromPoints = [&](const mrpt::maps::CPointsMap& pts)
+    {
+        storage[0].assign(pts.getPointsBufferRef_x().begin(), pts.getPointsBufferRef_x().end());
+        storage[1].assign(pts.getPointsBufferRef_y().begin(), pts.getPointsBufferRef_y().end());
+        storage[2].assign(pts.getPointsBufferRef_z().begin(), pts.getPointsBufferRef_z().end());
+        fromStorage();
+    };
     if (const auto* pc = dynamic_cast<const CObservationPointCloud*>(&obs))
     {
         pc->load();  // no-op unless stored externally (lazy-load)
@@ -65,10 +72,7 @@ bool sensorPoints(const mrpt::obs::CObservation& obs, SensorPoints& out)
         CObservation3DRangeScan copy = *o3d;  // unprojectInto() is not const
         mrpt::maps::CSimplePointsMap pts;
         copy.unprojectInto(pts);  // sensor frame by default
-        storage[0].assign(pts.getPointsBufferRef_x().begin(), pts.getPointsBufferRef_x().end());
-        storage[1].assign(pts.getPointsBufferRef_y().begin(), pts.getPointsBufferRef_y().end());
-        storage[2].assign(pts.getPointsBufferRef_z().begin(), pts.getPointsBufferRef_z().end());
-        fromStorage();
+        fromPoints(pts);
         return true;
     }
     if (const auto* velo = dynamic_cast<const CObservationVelodyneScan*>(&obs))
@@ -92,26 +96,15 @@ bool sensorPoints(const mrpt::obs::CObservation& obs, SensorPoints& out)
     if (const auto* o2d = dynamic_cast<const CObservation2DRangeScan*>(&obs))
     {
         out.sensor_pose = o2d->sensorPose;
-        const std::size_t n = o2d->getScanSize();
-        for (auto& s : storage) s.clear();
-        // MRPT's convention: beam i at -aperture/2 + i * aperture / (n-1), mirrored when
-        // scanning right to left is false.
-        double ang = -0.5 * o2d->aperture;
-        double dA = n > 1 ? o2d->aperture / static_cast<double>(n - 1) : 0.0;
-        if (!o2d->rightToLeft)
-        {
-            ang = -ang;
-            dA = -dA;
-        }
-        for (std::size_t i = 0; i < n; ++i, ang += dA)
-        {
-            if (!o2d->getScanRangeValidity(i)) continue;
-            const double r = o2d->getScanRange(i);
-            storage[0].push_back(static_cast<float>(r * std::cos(ang)));
-            storage[1].push_back(static_cast<float>(r * std::sin(ang)));
-            storage[2].push_back(0.0f);
-        }
-        fromStorage();
+        // MRPT's own conversion (its beam angles, its validity), in the sensor frame: a copy
+        // at the identity, every valid range one point (and one class), none merged or added.
+        CObservation2DRangeScan at_sensor = *o2d;
+        at_sensor.sensorPose = mrpt::poses::CPose3D();
+        mrpt::maps::CSimplePointsMap pts;
+        pts.insertionOptions.minDistBetweenLaserPoints = 0;
+        pts.insertionOptions.also_interpolate = false;
+        pts.loadFromRangeScan(at_sensor);
+        fromPoints(pts);
         return true;
     }
     return false;
