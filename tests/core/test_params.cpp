@@ -168,3 +168,25 @@ TEST(Params, EqualityIsFieldByField)
     b.low_height_preservation = false;
     EXPECT_NE(a, b);
 }
+
+// The field tables' compile-time check (in Params.h and GridGeometry.h) counts members as brace
+// initialization does, so that a member added to a settings struct without its row stops the
+// build; here, that it counts right.
+namespace
+{
+struct ThreeMembers
+{
+    double a = 1.0;
+    bool b = true;
+    std::size_t c = 2;
+};
+struct FourMembers
+{
+    double a = 1.0;
+    bool b = true;
+    std::size_t c = 2;
+    double d = 0.0;
+};
+}  // namespace
+static_assert(hif::memberCount<ThreeMembers>() == 3);
+static_assert(hif::memberCount<FourMembers>() == 4);

@@ -13,6 +13,7 @@
 #include <limits>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <variant>
 
 namespace hif
@@ -109,6 +110,49 @@ void validateFields(const S& s, const char* owner)
                     throwInvalid(owner, field.name, d, field.bounds.describe());
             }
         });
+}
+
+namespace detail
+{
+/** Converts to any member type, for counting the members brace initialization takes. */
+struct AnyMember
+{
+    template <typename T>
+    constexpr operator T() const noexcept  // NOLINT: implicit on purpose
+    {
+        return T{};
+    }
+};
+
+template <typename T, typename... A>
+constexpr auto bracesTake(int) -> decltype(T{std::declval<A>()...}, true)
+{
+    return true;
+}
+template <typename T, typename... A>
+constexpr bool bracesTake(...)
+{
+    return false;
+}
+template <typename T, std::size_t... I>
+constexpr bool bracesTakeCount(std::index_sequence<I...>)
+{
+    return bracesTake<T, decltype((void)I, AnyMember{})...>(0);
+}
+}  // namespace detail
+
+/** The number of members of `T`, an aggregate of scalar members (as the settings structs are):
+ *  how many values its brace initialization takes. Each settings struct checks at compile time
+ *  that its field table has a row for every member, so that none is left out of validation,
+ *  equality, the .ini, serialization and JSON. */
+template <typename T, std::size_t N = 0>
+constexpr std::size_t memberCount()
+{
+    static_assert(std::is_aggregate_v<T>, "memberCount() counts the members of an aggregate");
+    if constexpr (detail::bracesTakeCount<T>(std::make_index_sequence<N + 1>{}))
+        return memberCount<T, N + 1>();
+    else
+        return N;
 }
 
 }  // namespace hif

@@ -76,6 +76,10 @@ struct GridGeometry
     friend bool operator!=(const GridGeometry& a, const GridGeometry& b) { return !(a == b); }
 };
 
+static_assert(memberCount<GridGeometry>() ==
+                  std::tuple_size_v<std::decay_t<decltype(GridGeometry::fields())>>,
+              "every member of hif::GridGeometry needs its row in GridGeometry::fields()");
+
 inline const std::array<Field<GridGeometry>, 4>& GridGeometry::fields()
 {
     using G = GridGeometry;

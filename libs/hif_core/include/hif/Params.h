@@ -170,6 +170,9 @@ struct Params
     friend bool operator!=(const Params& a, const Params& b) { return !(a == b); }
 };
 
+static_assert(memberCount<Params>() == std::tuple_size_v<std::decay_t<decltype(Params::fields())>>,
+              "every member of hif::Params needs its row in Params::fields()");
+
 inline const std::array<Field<Params>, 27>& Params::fields()
 {
     using P = Params;
