@@ -12,6 +12,7 @@
 #include <map>
 #include <random>
 #include <set>
+#include <thread>
 
 #include "hif/PillarGrid.h"
 #include "hif/detail/InsertSteps.h"
@@ -428,4 +429,52 @@ TEST(SeeThroughMisses, SameMapOnOneAndThreeThreads)
     // is empty only with them.
     EXPECT_FALSE(g1.isStatic(8.5, -2.5, -1.0));
     EXPECT_TRUE(off.isStatic(8.5, -2.5, -1.0));
+}
+
+// classify() is const and may run on several threads at once on one grid: each call takes its
+// own scan buffer from the grid, so concurrent calls give what one call at a time gives.
+TEST(Classify, ConcurrentCallsOnOneGridGiveTheSequentialResults)
+{
+    std::mt19937 rng(7);
+    PillarGrid grid(GridGeometry(), Params::paper());
+    struct FloatScan
+    {
+        std::vector<float> x, y, z;
+        [[nodiscard]] PointsView view() const { return {x.data(), y.data(), z.data(), x.size()}; }
+    };
+    std::vector<FloatScan> scans(6);
+    for (std::size_t k = 0; k < scans.size(); ++k)
+    {
+        for (const auto& p : randomScan(rng, 3000, 0.3 * double(k)))
+        {
+            scans[k].x.push_back(float(p[0]));
+            scans[k].y.push_back(float(p[1]));
+            scans[k].z.push_back(float(p[2]));
+        }
+        grid.insertScan(scans[k].view(), Eigen::Isometry3d::Identity());
+    }
+    std::vector<std::vector<uint8_t>> want(scans.size());
+    for (std::size_t k = 0; k < scans.size(); ++k) (void)grid.classify(scans[k].view(), want[k]);
+    std::vector<std::vector<std::vector<uint8_t>>> got(scans.size(),
+                                                       std::vector<std::vector<uint8_t>>(20));
+    std::vector<std::thread> threads;
+    for (std::size_t k = 0; k < scans.size(); ++k)
+        threads.emplace_back(
+            [&, k]
+            {
+                for (auto& out : got[k]) (void)grid.classify(scans[k].view(), out);
+            });
+    for (std::thread& t : threads) t.join();
+    for (std::size_t k = 0; k < scans.size(); ++k)
+        for (const auto& out : got[k]) ASSERT_EQ(out, want[k]) << "scan " << k;
+    // Some points of each kind, or the comparison says little.
+    std::size_t dynamic = 0, total = 0;
+    for (const auto& w : want)
+        for (const uint8_t d : w)
+        {
+            dynamic += d;
+            ++total;
+        }
+    EXPECT_GT(dynamic, 0u);
+    EXPECT_LT(dynamic, total);
 }

@@ -15,10 +15,9 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
                                    const Eigen::Isometry3d& T,
                                    const FreeSpaceTest* free_space) const
 {
-    // Reused by later calls on this thread. Worker threads must use this thread's object, so
-    // the lambda below captures a reference, never the thread_local name.
-    thread_local detail::ScanBuckets scan_buffer;
-    detail::ScanBuckets& scan = scan_buffer;
+    // The grid's own buffer for this call (reused by later calls, freed with the grid).
+    const auto lease = workspace_.get().classify_buffers.take();
+    detail::ScanBuckets& scan = *lease.buffer;
     detail::bucketPoints(*this, pts, T, scan, true);
     constexpr uint8_t kUnset = 2;
     is_dynamic.assign(pts.size, kUnset);

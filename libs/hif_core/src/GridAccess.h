@@ -6,6 +6,8 @@
  */
 #pragma once
 
+#include <memory>
+#include <mutex>
 #include <vector>
 
 #include "Parallel.h"
@@ -27,6 +29,45 @@ struct Workspace
     std::vector<BeamReturn> range_image;       ///< the scan's returns (miss gates)
     std::vector<uint8_t> returned_blocks;      ///< of range_image (buildReturnImage())
     std::vector<uint8_t> hit;                  ///< see-through misses: pillars the scan hit
+
+    /** Scan buffers of classify() (const, and may run concurrently): each call takes one, or
+     *  a new one, and gives it back; they are freed with the grid. */
+    class ClassifyBuffers
+    {
+    public:
+        /** A buffer for one call, given back when it goes. */
+        struct Lease
+        {
+            ClassifyBuffers* owner;
+            std::unique_ptr<ScanBuckets> buffer;
+            Lease(const Lease&) = delete;
+            Lease& operator=(const Lease&) = delete;
+            ~Lease()
+            {
+                const std::lock_guard<std::mutex> lock(owner->mutex_);
+                owner->free_.push_back(std::move(buffer));
+            }
+        };
+        [[nodiscard]] Lease take()
+        {
+            std::unique_ptr<ScanBuckets> buffer;
+            {
+                const std::lock_guard<std::mutex> lock(mutex_);
+                if (!free_.empty())
+                {
+                    buffer = std::move(free_.back());
+                    free_.pop_back();
+                }
+            }
+            if (!buffer) buffer = std::make_unique<ScanBuckets>();
+            return Lease{this, std::move(buffer)};
+        }
+
+    private:
+        std::mutex mutex_;
+        std::vector<std::unique_ptr<ScanBuckets>> free_;
+    };
+    ClassifyBuffers classify_buffers;
 };
 
 struct GridAccess
