@@ -11,8 +11,6 @@
 #include <mrpt/maps/CMultiMetricMap.h>
 #include <mrpt/obs/CObservationPointCloud.h>
 
-#include <malloc.h>
-
 #include <cmath>
 #include <deque>
 #include <filesystem>
@@ -29,6 +27,7 @@
 #include "hif/CHeightIntervalMap.h"
 #include "hif/apps/Cli.h"
 #include "hif/apps/Config.h"
+#include "hif/apps/Heap.h"
 #include "hif/apps/RunFiles.h"
 #include "hif/apps/Staged.h"
 
@@ -519,7 +518,7 @@ int runClean(Cli& cli)
     }
 
     const auto t_files = Clock::now();
-    malloc_trim(0);  // the scans' buffers, kept for reuse while scans came, go back now
+    hif::apps::returnFreeHeap();  // the scans' buffers, kept for reuse, go back now
     out.close();
     const std::size_t rawlog_scans = out.closeRawlog();
     run.hif_map->saveToFile(dir + "/map.hifmap");
@@ -562,13 +561,6 @@ int runClean(Cli& cli)
 
 int main(int argc, char** argv)
 {
-    // Every scan allocates and frees the same few buffers of megabytes (points, labels, range
-    // images). By default glibc maps each one afresh and unmaps it when freed, and every page is
-    // then faulted in and zeroed again, scan after scan; kept in the heap they are reused.
-    mallopt(M_MMAP_THRESHOLD, 256 << 20);
-    mallopt(M_TRIM_THRESHOLD, 512 << 20);
-    // One heap for the reader thread and this one: what one frees the other reuses, and it
-    // goes back to the system before the last stage (a second arena kept 55 MB of it).
-    mallopt(M_ARENA_MAX, 1);
+    hif::apps::keepScanBuffersInTheHeap();
     return hif::apps::cliMain<Cli>(kTag.c_str(), argc, argv, runClean);
 }
