@@ -8,10 +8,13 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <condition_variable>
 #include <cstring>
 #include <iomanip>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 
 #include "hif/io/CloudFiles.h"
@@ -99,6 +102,78 @@ void writeHeaderAndCopy(const std::string& file, const std::string& header, cons
 }
 }  // namespace
 
+/** The body's writes, on a thread of their own: the caller fills one buffer while the other is
+ *  written (copying it into the kernel costs as much as making the points). One write at a
+ *  time; its failure is kept for the caller's next flush() or wait(). */
+class CloudWriter::BackgroundWrites
+{
+public:
+    explicit BackgroundWrites(std::size_t buffer_bytes)
+        : buffer_(buffer_bytes), thread_([this] { loop(); })
+    {
+    }
+    ~BackgroundWrites()
+    {
+        {
+            const std::lock_guard<std::mutex> lock(mutex_);
+            stop_ = true;
+        }
+        cv_.notify_all();
+        thread_.join();
+    }
+    BackgroundWrites(const BackgroundWrites&) = delete;
+    BackgroundWrites& operator=(const BackgroundWrites&) = delete;
+
+    /** Writes the first `bytes` of `buffer` to `file`, and gives `buffer` an empty one of the
+     *  same size (once the write before is done). */
+    void write(std::FILE* file, std::vector<char>& buffer, std::size_t bytes)
+    {
+        std::unique_lock<std::mutex> lock(mutex_);
+        cv_.wait(lock, [this] { return !pending_; });
+        buffer_.swap(buffer);
+        file_ = file;
+        bytes_ = bytes;
+        pending_ = true;
+        lock.unlock();
+        cv_.notify_all();
+    }
+    /** Why a write failed, if one did (said once); with `wait`, once the write under way is
+     *  done. */
+    [[nodiscard]] std::string failure(bool wait)
+    {
+        std::unique_lock<std::mutex> lock(mutex_);
+        if (wait) cv_.wait(lock, [this] { return !pending_; });
+        return std::exchange(error_, std::string());
+    }
+
+private:
+    void loop()
+    {
+        std::unique_lock<std::mutex> lock(mutex_);
+        for (;;)
+        {
+            cv_.wait(lock, [this] { return pending_ || stop_; });
+            if (!pending_) return;  // stopped
+            lock.unlock();
+            const bool ok = std::fwrite(buffer_.data(), 1, bytes_, file_) == bytes_;
+            const int err = errno;
+            lock.lock();
+            if (!ok && error_.empty()) error_ = std::strerror(err);
+            pending_ = false;
+            cv_.notify_all();
+        }
+    }
+
+    std::vector<char> buffer_;  ///< being written, or the spare
+    std::FILE* file_ = nullptr;
+    std::size_t bytes_ = 0;
+    bool pending_ = false, stop_ = false;
+    std::string error_;
+    std::mutex mutex_;
+    std::condition_variable cv_;
+    std::thread thread_;
+};
+
 CloudWriter::CloudWriter(std::vector<std::string> files, PointFields fields)
     : files_(std::move(files))
 {
@@ -107,7 +182,7 @@ CloudWriter::CloudWriter(std::vector<std::string> files, PointFields fields)
         if (!endsWith(file, ".pcd") && !endsWith(file, ".ply"))
             throwFileError(file, "has an unknown point-cloud extension (use .ply or .pcd)");
     setFields(fields);
-    buf_.resize(std::size_t{1} << 17);
+    buf_.resize(kBufferBytes);
 }
 
 void CloudWriter::setFields(const PointFields& fields)
@@ -122,6 +197,7 @@ void CloudWriter::setFields(const PointFields& fields)
 
 CloudWriter::~CloudWriter()
 {
+    writes_.reset();  // a write under way ends first
     if (f_)
     {
         std::fclose(f_);
@@ -159,10 +235,20 @@ void CloudWriter::open()
 void CloudWriter::flush()
 {
     if (!f_) open();
-    if (used_ > 0 && std::fwrite(buf_.data(), 1, used_, f_) != used_)
-        throwFileError(body_file_,
-                       std::string("could not be written (disk full?): ") + std::strerror(errno));
-    used_ = 0;
+    if (used_ > 0)
+    {
+        if (!writes_) writes_ = std::make_unique<BackgroundWrites>(kBufferBytes);
+        writes_->write(f_, buf_, used_);
+        used_ = 0;
+    }
+    throwIfAWriteFailed(false);
+}
+
+void CloudWriter::throwIfAWriteFailed(bool wait)
+{
+    if (!writes_) return;
+    const std::string error = writes_->failure(wait);
+    if (!error.empty()) throwFileError(body_file_, "could not be written (disk full?): " + error);
 }
 
 std::string CloudWriter::viewpointText() const
@@ -226,6 +312,7 @@ void CloudWriter::promote()
     if (f_)
     {
         flush();
+        throwIfAWriteFailed(true);
         const std::size_t bytes = count_ * recordBytes();
         old.resize(bytes);
         if (std::fflush(f_) != 0 ||
@@ -259,6 +346,8 @@ void CloudWriter::close()
 {
     if (closed_) return;
     flush();  // with no point, the files still get their headers
+    throwIfAWriteFailed(true);
+    writes_.reset();
     const bool failed = std::fclose(f_) != 0;
     f_ = nullptr;
     closed_ = true;

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -181,8 +182,12 @@ private:
         ++count_;
     }
     void open();
-    /** Writes what buf_ holds (opening the body's file first if needed). */
+    /** Hands what buf_ holds to the background writes (opening the body's file first if
+     *  needed); throws if an earlier write failed. */
     void flush();
+    /** Throws naming the body's file if a write failed (with `wait`, once the write under way
+     *  is done). */
+    void throwIfAWriteFailed(bool wait);
     /** From float32 to float64 coordinates: the body written so far is rewritten. */
     void promote();
     [[nodiscard]] std::size_t recordBytes() const;
@@ -199,8 +204,11 @@ private:
     std::size_t count_ = 0;
     PointFields fields_;
     static constexpr std::size_t kMaxTail = 24;  ///< tailBytes() with every field
-    std::vector<char> buf_;                      ///< points not yet written
-    std::size_t used_ = 0;                       ///< bytes of buf_ in use
+    static constexpr std::size_t kBufferBytes = std::size_t{1} << 19;
+    std::vector<char> buf_;  ///< points not yet written
+    class BackgroundWrites;
+    std::unique_ptr<BackgroundWrites> writes_;  ///< from the first flush() to close()
+    std::size_t used_ = 0;                      ///< bytes of buf_ in use
     Eigen::Isometry3d viewpoint_ = Eigen::Isometry3d::Identity();
 };
 
