@@ -9,8 +9,9 @@
 #   bash scripts/walkers.sh                          # shipped configs
 #   bash scripts/walkers.sh -c share/hif/config/kitti-paper.ini    # extra hif-clean flags
 #   HIF_WALKERS_SCENE=cyclists bash scripts/walkers.sh   # cyclists at 3 to 6 m/s instead
+#   HIF_WALKERS_SCENE=radial bash scripts/walkers.sh     # people walking along the line of sight
 #
-# Environment: HIF_WALKERS_SCENE (walkers, the default, or cyclists), HIF_WALKERS_SEEDS
+# Environment: HIF_WALKERS_SCENE (walkers, the default, radial or cyclists), HIF_WALKERS_SEEDS
 # (default "1 2 3"), HIF_WALKERS_SPEEDS (default "0 1 3 5"), HIF_WALKERS_SCANS (default 10),
 # HIF_WALKERS_MODES (default "offline online").
 # Work files go to ${HIF_WALKERS_DIR:-build/<scene>}/; clips are generated once and reused.
@@ -18,7 +19,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${HIF_BUILD_DIR:-build}/apps
 SCENE=${HIF_WALKERS_SCENE:-walkers}
-case "$SCENE" in walkers|cyclists) ;; *) echo "[walkers] HIF_WALKERS_SCENE=$SCENE is not walkers or cyclists" >&2; exit 1;; esac
+case "$SCENE" in walkers|radial|cyclists) ;; *) echo "[walkers] HIF_WALKERS_SCENE=$SCENE is not walkers, radial or cyclists" >&2; exit 1;; esac
 ROOT=${HIF_WALKERS_DIR:-build/$SCENE}
 SEEDS=${HIF_WALKERS_SEEDS:-1 2 3}
 SPEEDS=${HIF_WALKERS_SPEEDS:-0 1 3 5}

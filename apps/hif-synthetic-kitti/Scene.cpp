@@ -254,6 +254,48 @@ Scene walkersScene(std::mt19937& rng, double length, double duration, int groups
     return s;
 }
 
+Scene radialWalkersScene(std::mt19937& rng, double length, double duration, int groups)
+{
+    Scene s;
+    addStreet(s, rng, length);
+    std::uniform_real_distribution<double> u(0, 1);
+    const double speeds[3] = {0.8, 1.2, 1.6};
+    const double t_mid = 0.5 * duration, x_mid = 0.5 * length;
+    const Eigen::Vector3d sensor_mid(x_mid, 0.0, 0.0);
+    uint32_t id = 1;
+    for (int g = 0; g < groups; ++g)
+    {
+        const double speed = speeds[std::min(2, static_cast<int>(3 * u(rng)))];
+        const bool towards = u(rng) < 0.5;
+        // 0 to 15 degrees off the line of sight, to either side.
+        const double off = (u(rng) < 0.5 ? -1.0 : 1.0) * 15.0 * u(rng) * M_PI / 180.0;
+        // Where the group is at mid-clip: 8 to 25 m from the sensor, mostly ahead, on the road
+        // or the sidewalks.
+        const double dist = 8.0 + 17.0 * u(rng);
+        const double y = (2.0 * u(rng) - 1.0) * std::min(7.8, 0.5 * dist);
+        const Eigen::Vector3d mid = groupCentre(x_mid, u(rng) < 0.75 ? 1.0 : -1.0, dist, y);
+        const Eigen::Vector3d los = (mid - sensor_mid).normalized();
+        const Eigen::Vector3d along =
+            Eigen::AngleAxisd(off, Eigen::Vector3d::UnitZ()) * (towards ? -los : los);
+        const Eigen::Vector3d vel = along * speed;
+        const int members = u(rng) < 0.5 ? 1 : (u(rng) < 0.6 ? 2 : 3);
+        const Eigen::Vector3d beside(-along.y(), along.x(), 0.0);
+        for (int k = 0; k < members; ++k)
+        {
+            Mover m;
+            m.velocity = vel * (1.0 + 0.05 * (u(rng) - 0.5));
+            m.start = mid + beside * (0.7 * k) - m.velocity * t_mid;
+            m.size = Eigen::Vector3d(0.5, 0.5, 1.6 + 0.25 * u(rng));
+            m.label = kMovingPerson;
+            m.instance = id++;
+            m.shape = Mover::Shape::Walker;
+            m.phase = 2 * M_PI * u(rng);
+            s.movers.push_back(m);
+        }
+    }
+    return s;
+}
+
 Scene cyclistsScene(std::mt19937& rng, double length, double duration, int groups)
 {
     Scene s;

@@ -93,6 +93,12 @@ Scene streetScene(std::mt19937& rng, double length);
  *  `length`; `duration` is the clip's length in seconds. */
 Scene walkersScene(std::mt19937& rng, double length, double duration, int groups);
 
+/** People walking along the sensor's line of sight, towards it or away (0 to 15 degrees off
+ *  it), at 0.8, 1.2 or 1.6 m/s, 8 to 25 m away at mid-clip, alone or in groups of 2 or 3
+ *  side by side: the beams through where they were land on them again, a little nearer or
+ *  farther. */
+Scene radialWalkersScene(std::mt19937& rng, double length, double duration, int groups);
+
 /** The same street with groups of cyclists instead of people: `groups` groups of 1 or 2
  *  riders (one behind the other) at 3, 4.5 or 6 m/s, along the road by the parked cars, either
  *  way, or across it, 8 to 35 m from the sensor at mid-clip. */

@@ -43,8 +43,9 @@ struct Cli
         "columns, 80 m) moving down a sloping street with buildings, trees and parked cars. Scene "
         "'street': driving at 8 m/s "
         "while cars (class 252) and people (254) move; scene 'walkers': only people walk, in "
-        "groups, along the sidewalks and across the road; scene 'cyclists': only cyclists (253) "
-        "ride, along the road and across it.",
+        "groups, along the sidewalks and across the road; scene 'radial': only people walk, "
+        "towards the sensor or away from it, within 15 degrees of its line of sight; scene "
+        "'cyclists': only cyclists (253) ride, along the road and across it.",
         ' ', "0.1"};
     TCLAP::ValueArg<std::string> output{"o",      "output", "Output sequence folder", true, "",
                                         "folder", cmd};
@@ -52,20 +53,25 @@ struct Cli
                                      "N", cmd};
     TCLAP::ValueArg<long long> seed{"",  "seed", "Random seed of the scene (default: 1)", false, 1,
                                     "S", cmd};
-    TCLAP::ValueArg<std::string> scene{"",    "scene",  "street (default), walkers or cyclists",
-                                       false, "street", "street|walkers|cyclists",
-                                       cmd};
+    TCLAP::ValueArg<std::string> scene{
+        "",    "scene",  "street (default), walkers, radial or cyclists",
+        false, "street", "street|walkers|radial|cyclists",
+        cmd};
     TCLAP::ValueArg<double> ego_speed{
         "",
         "ego-speed",
-        "Speed of the sensor, m/s, >= 0 (default: 8 for street, 3 for walkers and cyclists)",
+        "Speed of the sensor, m/s, >= 0 (default: 8 for street, 3 for the others)",
         false,
         8.0,
         "m/s",
         cmd};
     TCLAP::ValueArg<int> groups{
-        "",    "groups", "Walkers and cyclists scenes: groups of people or cyclists (default: 6)",
-        false, 6,        "N",
+        "",
+        "groups",
+        "Walkers, radial and cyclists scenes: groups of people or cyclists (default: 6)",
+        false,
+        6,
+        "N",
         cmd};
     TCLAP::ValueArg<std::string> sensor{"",
                                         "sensor",
@@ -88,8 +94,9 @@ int run(Cli& cli)
     const auto seed = static_cast<std::mt19937::result_type>(
         hif::apps::flagInRange(cli.seed.getValue(), "--seed", 0, 4294967295LL));
     const std::string kind = cli.scene.getValue();
-    if (kind != "street" && kind != "walkers" && kind != "cyclists")
-        throw std::runtime_error("--scene '" + kind + "' is not street, walkers or cyclists");
+    if (kind != "street" && kind != "walkers" && kind != "radial" && kind != "cyclists")
+        throw std::runtime_error("--scene '" + kind +
+                                 "' is not street, walkers, radial or cyclists");
     const double ego_speed =
         cli.ego_speed.isSet() ? cli.ego_speed.getValue() : (kind == "street" ? 8.0 : 3.0);
     if (!(ego_speed >= 0.0 && ego_speed <= 60.0))
@@ -110,10 +117,11 @@ int run(Cli& cli)
     std::mt19937 rng(seed);
     const double length = ego_speed * kScanPeriod * double(n);
     const double duration = kScanPeriod * double(n);
-    const Scene scene = kind == "street" ? streetScene(rng, length)
-                        : kind == "walkers"
-                            ? walkersScene(rng, length, duration, cli.groups.getValue())
-                            : cyclistsScene(rng, length, duration, cli.groups.getValue());
+    const int groups = cli.groups.getValue();
+    const Scene scene = kind == "street"    ? streetScene(rng, length)
+                        : kind == "walkers" ? walkersScene(rng, length, duration, groups)
+                        : kind == "radial"  ? radialWalkersScene(rng, length, duration, groups)
+                                            : cyclistsScene(rng, length, duration, groups);
     std::normal_distribution<double> noise(0.0, 0.01);
 
     // KITTI's LiDAR-to-camera calibration, rounded: camera x = -y, y = -z, z = x.

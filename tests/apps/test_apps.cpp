@@ -779,6 +779,71 @@ TEST(Walkers, SyntheticWalkersAreRemovedOfflineAndOnline)
     }
 }
 
+// People walking towards the sensor or away from it, within 15 degrees of its line of sight
+// (issue 23's hard case): the beams through where a person was land on the person again, a
+// little nearer or farther, so fewer are removed than of the people crossing the view. The floors
+// guard today's figures (person DA 80.5 and 72.9 offline, 64.8 and 58.3 online; the paper's
+// method 30.6 and 19.0); the issue's targets are 85 offline and 75 online.
+TEST(Walkers, WalkersAlongTheLineOfSightAreRemovedInPart)
+{
+    if (HIF_SANITIZED)
+        GTEST_SKIP() << "removal floors: the plain suite (scripts/test.sh) checks them";
+    const WorkDir work = workDir("radial_" + std::to_string(getpid()));
+    for (const auto& [speed, seed] : {std::pair{"0", "1"}, std::pair{"3", "2"}})
+    {
+        const std::string seq = work.path() + "/v" + std::string(speed);
+        SCOPED_TRACE(seq);
+        ASSERT_NO_FATAL_FAILURE(makeClip(seq, "radial", speed, seed));
+        // The scene is what it says: each person seen in the first and the last scan moved along
+        // the line of sight from the sensor (within 15 degrees, and some more for the centroid of
+        // what is seen of a person).
+        const hif::io::KittiSequence kitti(seq);
+        std::map<uint32_t, std::vector<Eigen::Vector3d>> centroids;  // instance -> first, last
+        for (const std::size_t i : {std::size_t{0}, kitti.size() - 1})
+        {
+            const hif::io::Cloud c = kitti.readScan(i);
+            const std::vector<uint32_t> labels = hif::io::readLabels(kitti.labelFile(i));
+            std::map<uint32_t, std::pair<Eigen::Vector3d, int>> sum;
+            for (std::size_t k = 0; k < c.size(); ++k)
+                if ((labels[k] & 0xFFFF) == 254)
+                {
+                    auto& [p, n] = sum[labels[k] >> 16];
+                    if (n == 0) p.setZero();
+                    p += kitti.pose(i) * Eigen::Vector3d(c.x[k], c.y[k], c.z[k]);
+                    ++n;
+                }
+            for (const auto& [id, pn] : sum)
+                if (pn.second >= 30) centroids[id].push_back(pn.first / pn.second);
+        }
+        const Eigen::Vector3d sensor_mid =
+            0.5 * (kitti.pose(0).translation() + kitti.pose(kitti.size() - 1).translation());
+        std::size_t people = 0;
+        for (const auto& [id, c] : centroids)
+        {
+            if (c.size() != 2) continue;
+            Eigen::Vector3d moved = c[1] - c[0], los = 0.5 * (c[0] + c[1]) - sensor_mid;
+            moved.z() = los.z() = 0;
+            ASSERT_GT(moved.norm(), 0.4) << "person " << id;
+            const double cosine = std::abs(moved.dot(los)) / (moved.norm() * los.norm());
+            EXPECT_GT(cosine, std::cos(25.0 * M_PI / 180.0)) << "person " << id;
+            ++people;
+        }
+        EXPECT_GE(people, 3u);
+        const json paper =
+            cleanAndScore(seq, "paper", "-c " HIF_SHARE_DIR "/config/kitti-paper.ini");
+        const json offline = cleanAndScore(seq, "offline", "");
+        const json online = cleanAndScore(seq, "online", "--online");
+        for (const json* s : {&offline, &online})
+        {
+            EXPECT_GE((*s)["total"]["SA"].get<double>(), 99.5);
+            EXPECT_GT((*s)["per_moving_class"]["moving-person"]["dynamic_total"].get<int>(), 3000);
+        }
+        EXPECT_GE(offline["per_moving_class"]["moving-person"]["DA"].get<double>(), 70.0);
+        EXPECT_GE(online["per_moving_class"]["moving-person"]["DA"].get<double>(), 55.0);
+        EXPECT_LT(paper["per_moving_class"]["moving-person"]["DA"].get<double>(), 40.0);
+    }
+}
+
 // Cyclists at 3 to 6 m/s, the sensor moving at 3 m/s: they move fast enough for the map to
 // remove much of them, the rest (the bicycle's low parts, near the ground) is the free-space
 // test's.
