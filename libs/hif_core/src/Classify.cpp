@@ -16,7 +16,7 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
                                    const FreeSpaceTest* free_space) const
 {
     // The grid's own buffer for this call (reused by later calls, freed with the grid).
-    const auto lease = workspace_.get().classify_buffers.take();
+    const auto lease = detail::GridAccess::workspace(*this).classify_buffers.take();
     detail::ScanBuckets& scan = *lease.buffer;
     detail::bucketPoints(*this, pts, T, scan, true);
     constexpr uint8_t kUnset = 2;
@@ -24,7 +24,7 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
 
     const bool prior_static = isStaticLogOdds(logit(params_.p_empty_init));
     std::atomic<std::size_t> n_static{0};
-    detail::forRanges(arena_.get(), scan.pillarCount(), 256,
+    detail::forRanges(detail::GridAccess::arena(*this), scan.pillarCount(), 256,
                       [&](std::size_t p0, std::size_t p1)
                       {
                           std::size_t local_static = 0;

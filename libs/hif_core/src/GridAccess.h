@@ -10,8 +10,10 @@
 #include <mutex>
 #include <vector>
 
+#include <absl/container/flat_hash_map.h>
 #include "Parallel.h"
 #include "RangeImage.h"
+
 #include "hif/PillarGrid.h"
 #include "hif/detail/InsertSteps.h"
 
@@ -70,13 +72,29 @@ struct Workspace
     ClassifyBuffers classify_buffers;
 };
 
+}  // namespace hif::detail
+
+namespace hif
+{
+struct PillarGrid::State
+{
+    detail::PillarTable pillars;
+    std::shared_ptr<detail::ThreadArena> arena;  ///< null on one thread; shared by copies
+    /** Not part of the map: a copy starts with empty buffers of its own. */
+    detail::Workspace workspace;
+};
+}  // namespace hif
+
+namespace hif::detail
+{
 struct GridAccess
 {
-    static PillarTable& pillars(PillarGrid& g) { return g.pillars_; }
-    static const PillarTable& pillars(const PillarGrid& g) { return g.pillars_; }
+    static PillarTable& pillars(PillarGrid& g) { return g.state_->pillars; }
+    static const PillarTable& pillars(const PillarGrid& g) { return g.state_->pillars; }
     /** Null when the grid runs on one thread. */
-    static ThreadArena* arena(const PillarGrid& g) { return g.arena_.get(); }
-    static Workspace& workspace(PillarGrid& g) { return g.workspace_.get(); }
+    static ThreadArena* arena(const PillarGrid& g) { return g.state_->arena.get(); }
+    /** The grid's buffers (classify(), which is const, takes its own from them). */
+    static Workspace& workspace(const PillarGrid& g) { return g.state_->workspace; }
 };
 
 }  // namespace hif::detail

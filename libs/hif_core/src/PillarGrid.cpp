@@ -14,21 +14,47 @@
 
 namespace hif
 {
-namespace detail
-{
-WorkspaceHandle::WorkspaceHandle() : p_(std::make_unique<Workspace>()) {}
-WorkspaceHandle::~WorkspaceHandle() = default;
-WorkspaceHandle::WorkspaceHandle(const WorkspaceHandle&) : p_(std::make_unique<Workspace>()) {}
-WorkspaceHandle& WorkspaceHandle::operator=(const WorkspaceHandle&) { return *this; }
-WorkspaceHandle::WorkspaceHandle(WorkspaceHandle&&) noexcept = default;
-WorkspaceHandle& WorkspaceHandle::operator=(WorkspaceHandle&&) noexcept = default;
-}  // namespace detail
-
 PillarGrid::PillarGrid(const GridGeometry& geometry, const Params& params)
-    : geometry_(geometry), params_(params)
+    : geometry_(geometry), params_(params), state_(std::make_unique<State>())
 {
     params_.validateWith(geometry_);
     static_logodds_ = logit(params_.static_threshold);
+}
+
+PillarGrid::~PillarGrid() = default;
+
+PillarGrid::PillarGrid(const PillarGrid& other)
+    : geometry_(other.geometry_),
+      params_(other.params_),
+      static_logodds_(other.static_logodds_),
+      threads_(other.threads_),
+      state_(std::make_unique<State>()),
+      sensor_(other.sensor_),
+      beam_tangents_(other.beam_tangents_),
+      layout_(other.layout_),
+      scans_since_check_(other.scans_since_check_)
+{
+    state_->pillars = other.state_->pillars;
+    state_->arena = other.state_->arena;
+}
+
+PillarGrid& PillarGrid::operator=(const PillarGrid& other)
+{
+    if (this != &other) *this = PillarGrid(other);
+    return *this;
+}
+
+PillarGrid::PillarGrid(PillarGrid&& other) noexcept = default;
+PillarGrid& PillarGrid::operator=(PillarGrid&& other) noexcept = default;
+
+bool PillarGrid::empty() const { return state_->pillars.empty(); }
+
+std::size_t PillarGrid::pillarCount() const { return state_->pillars.size(); }
+
+void PillarGrid::clear()
+{
+    state_->pillars.clear();
+    setSensorModel(std::nullopt);
 }
 
 void PillarGrid::setParams(const Params& params)
@@ -43,7 +69,7 @@ void PillarGrid::setThreads(std::size_t threads)
     if (threads == 0)
         throw std::invalid_argument("hif::PillarGrid::setThreads: the thread count must be >= 1");
     threads_ = threads;
-    arena_ = threads > 1 ? std::make_shared<detail::ThreadArena>(threads) : nullptr;
+    state_->arena = threads > 1 ? std::make_shared<detail::ThreadArena>(threads) : nullptr;
 }
 
 void PillarGrid::setSensorModel(std::optional<SensorModel> model)
@@ -87,7 +113,7 @@ InsertStats PillarGrid::insertScan(const PointsView& pts, const Eigen::Isometry3
             }
         }
     }
-    detail::ScanBuckets& scan = workspace_.get().scan;
+    detail::ScanBuckets& scan = state_->workspace.scan;
     detail::bucketPoints(*this, pts, T, scan);
     detail::buildSpans(*this, scan);
     if (detail::needsScanImage(params_)) detail::buildScanImage(*this, pts);
@@ -128,14 +154,14 @@ bool PillarGrid::isStatic(double x, double y, double z) const
 std::size_t PillarGrid::intervalCount() const
 {
     std::size_t n = 0;
-    for (const auto& kv : pillars_) n += kv.second.intervals.size();
+    for (const auto& kv : state_->pillars) n += kv.second.intervals.size();
     return n;
 }
 
 std::size_t PillarGrid::maxIntervalsInAPillar() const
 {
     std::size_t n = 0;
-    for (const auto& kv : pillars_) n = std::max(n, kv.second.intervals.size());
+    for (const auto& kv : state_->pillars) n = std::max(n, kv.second.intervals.size());
     return n;
 }
 
@@ -143,22 +169,24 @@ std::size_t PillarGrid::memoryBytes() const
 {
     // absl's flat table: one slot and one control byte per bucket (plus a group of control
     // bytes); the intervals live in each pillar's own vector.
-    std::size_t bytes = pillars_.capacity() * (sizeof(std::pair<const uint64_t, Pillar>) + 1) + 16;
-    for (const auto& kv : pillars_) bytes += kv.second.intervals.capacity() * sizeof(Interval);
+    std::size_t bytes =
+        state_->pillars.capacity() * (sizeof(std::pair<const uint64_t, Pillar>) + 1) + 16;
+    for (const auto& kv : state_->pillars)
+        bytes += kv.second.intervals.capacity() * sizeof(Interval);
     return bytes;
 }
 
 const Pillar* PillarGrid::findPillar(PillarIndex idx) const
 {
-    const auto it = pillars_.find(packKey(idx));
-    return it == pillars_.end() ? nullptr : &it->second;
+    const auto it = state_->pillars.find(packKey(idx));
+    return it == state_->pillars.end() ? nullptr : &it->second;
 }
 
 std::vector<std::pair<PillarIndex, const Pillar*>> PillarGrid::sortedPillars() const
 {
     std::vector<std::pair<PillarIndex, const Pillar*>> v;
-    v.reserve(pillars_.size());
-    for (const auto& kv : pillars_) v.emplace_back(unpackKey(kv.first), &kv.second);
+    v.reserve(state_->pillars.size());
+    for (const auto& kv : state_->pillars) v.emplace_back(unpackKey(kv.first), &kv.second);
     std::sort(v.begin(), v.end(),
               [](const auto& a, const auto& b) {
                   return a.first.m < b.first.m || (a.first.m == b.first.m && a.first.n < b.first.n);
@@ -184,18 +212,18 @@ void PillarGrid::setPillar(PillarIndex idx, Pillar pillar)
         if (!std::isfinite(iv[k].logodds)) bad("has a non-finite probability");
         if (k > 0 && iv[k - 1].hi > iv[k].lo) bad("has unsorted or overlapping intervals");
     }
-    pillars_[packKey(idx)] = std::move(pillar);
+    state_->pillars[packKey(idx)] = std::move(pillar);
 }
 
 bool operator==(const PillarGrid& a, const PillarGrid& b)
 {
-    if (a.pillars_.size() != b.pillars_.size()) return false;
+    if (a.state_->pillars.size() != b.state_->pillars.size()) return false;
     if (a.geometry_ != b.geometry_ || a.params_ != b.params_ || a.sensor_ != b.sensor_)
         return false;
-    for (const auto& kv : a.pillars_)
+    for (const auto& kv : a.state_->pillars)
     {
-        const auto it = b.pillars_.find(kv.first);
-        if (it == b.pillars_.end() || !(it->second == kv.second)) return false;
+        const auto it = b.state_->pillars.find(kv.first);
+        if (it == b.state_->pillars.end() || !(it->second == kv.second)) return false;
     }
     return true;
 }

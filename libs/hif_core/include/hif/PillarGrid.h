@@ -6,8 +6,6 @@
  */
 #pragma once
 
-#include <absl/container/flat_hash_map.h>
-
 #include <Eigen/Geometry>
 #include <cstddef>
 #include <cstdint>
@@ -71,25 +69,7 @@ struct ClassifyStats
 
 namespace detail
 {
-struct ThreadArena;
-struct Workspace;
 struct GridAccess;
-/** Owns the per-scan buffers that insertion reuses (not part of the map): a copy of a grid
- *  starts with empty ones of its own. */
-class WorkspaceHandle
-{
-public:
-    WorkspaceHandle();
-    ~WorkspaceHandle();
-    WorkspaceHandle(const WorkspaceHandle&);
-    WorkspaceHandle& operator=(const WorkspaceHandle&);
-    WorkspaceHandle(WorkspaceHandle&&) noexcept;
-    WorkspaceHandle& operator=(WorkspaceHandle&&) noexcept;
-    [[nodiscard]] Workspace& get() const { return *p_; }
-
-private:
-    std::unique_ptr<Workspace> p_;
-};
 }  // namespace detail
 
 /** The global pillar dictionary G = {H_mn : P_mn} of the paper, with its update and queries.
@@ -102,6 +82,12 @@ public:
      *  Params::validateWith()). */
     explicit PillarGrid(const GridGeometry& geometry = GridGeometry(),
                         const Params& params = Params());
+    ~PillarGrid();
+    PillarGrid(const PillarGrid& other);
+    PillarGrid& operator=(const PillarGrid& other);
+    /** A grid moved from may only be assigned to or destroyed. */
+    PillarGrid(PillarGrid&& other) noexcept;
+    PillarGrid& operator=(PillarGrid&& other) noexcept;
 
     /** @name Insertion and classification
      *  @{ */
@@ -174,19 +160,15 @@ public:
 
     /** @name Contents
      *  @{ */
-    [[nodiscard]] bool empty() const { return pillars_.empty(); }
-    [[nodiscard]] std::size_t pillarCount() const { return pillars_.size(); }
+    [[nodiscard]] bool empty() const;
+    [[nodiscard]] std::size_t pillarCount() const;
     [[nodiscard]] std::size_t intervalCount() const;
     [[nodiscard]] std::size_t maxIntervalsInAPillar() const;
     /** Heap memory held by the map's content: the hash table's slots and control bytes, and
      *  every pillar's interval storage (capacity). Excludes the reusable scan buffers. */
     [[nodiscard]] std::size_t memoryBytes() const;
     /** Removes every pillar and the sensor model. */
-    void clear()
-    {
-        pillars_.clear();
-        setSensorModel(std::nullopt);
-    }
+    void clear();
 
     [[nodiscard]] const Pillar* findPillar(PillarIndex idx) const;
     /** All pillars sorted by (m, n): a deterministic order for saving and drawing. */
@@ -206,10 +188,11 @@ private:
     GridGeometry geometry_;
     Params params_;
     double static_logodds_ = 0.0;  ///< logit(static_threshold)
-    absl::flat_hash_map<uint64_t, Pillar, PackedKeyHash> pillars_;
     std::size_t threads_ = 1;
-    std::shared_ptr<detail::ThreadArena> arena_;  ///< null when threads_ == 1
-    detail::WorkspaceHandle workspace_;
+    /** The pillars' table, the threads and the buffers insertion and classification reuse
+     *  (GridAccess.h): a copy of a grid gets a copy of the table and buffers of its own. */
+    struct State;
+    std::unique_ptr<State> state_;
     std::optional<SensorModel> sensor_;
     std::vector<double> beam_tangents_;  ///< sensor_->beamTangents()
     RangeImageLayout layout_ = RangeImageLayout::forSensor(std::nullopt);
