@@ -101,6 +101,27 @@ Eigen::Vector3d groupCentre(double x_mid, double ahead, double dist, double y)
 {
     return {x_mid + ahead * std::sqrt(std::max(1.0, dist * dist - y * y)), y, 0.0};
 }
+/** A group of 1 to 3 people side by side (0.7 m apart, across `along`, the unit direction of
+ *  `vel`), centred on `mid` at time t_mid, walking at about `vel` with swinging legs. */
+void addWalkers(Scene& s, std::mt19937& rng, const Eigen::Vector3d& mid, const Eigen::Vector3d& vel,
+                const Eigen::Vector3d& along, double t_mid, uint32_t& id)
+{
+    std::uniform_real_distribution<double> u(0, 1);
+    const int members = u(rng) < 0.5 ? 1 : (u(rng) < 0.6 ? 2 : 3);
+    const Eigen::Vector3d beside(-along.y(), along.x(), 0.0);
+    for (int k = 0; k < members; ++k)
+    {
+        Mover m;
+        m.velocity = vel * (1.0 + 0.05 * (u(rng) - 0.5));
+        m.start = mid + beside * (0.7 * k) - m.velocity * t_mid;
+        m.size = Eigen::Vector3d(0.5, 0.5, 1.6 + 0.25 * u(rng));
+        m.label = kMovingPerson;
+        m.instance = id++;
+        m.shape = Mover::Shape::Walker;
+        m.phase = 2 * M_PI * u(rng);
+        s.movers.push_back(m);
+    }
+}
 }  // namespace
 
 void Mover::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t, Hit& h) const
@@ -236,20 +257,7 @@ Scene walkersScene(std::mt19937& rng, double length, double duration, int groups
             mid = groupCentre(x_mid, u(rng) < 0.8 ? 1.0 : -1.0, dist, y);
             vel = Eigen::Vector3d(sign * speed, 0.0, 0.0);
         }
-        const int members = u(rng) < 0.5 ? 1 : (u(rng) < 0.6 ? 2 : 3);
-        const Eigen::Vector3d beside(-vel.y() / speed, vel.x() / speed, 0.0);
-        for (int k = 0; k < members; ++k)
-        {
-            Mover m;
-            m.velocity = vel * (1.0 + 0.05 * (u(rng) - 0.5));
-            m.start = mid + beside * (0.7 * k) - m.velocity * t_mid;
-            m.size = Eigen::Vector3d(0.5, 0.5, 1.6 + 0.25 * u(rng));
-            m.label = kMovingPerson;
-            m.instance = id++;
-            m.shape = Mover::Shape::Walker;
-            m.phase = 2 * M_PI * u(rng);
-            s.movers.push_back(m);
-        }
+        addWalkers(s, rng, mid, vel, vel / speed, t_mid, id);
     }
     return s;
 }
@@ -278,20 +286,7 @@ Scene radialWalkersScene(std::mt19937& rng, double length, double duration, int 
         const Eigen::Vector3d along =
             Eigen::AngleAxisd(off, Eigen::Vector3d::UnitZ()) * (towards ? -los : los);
         const Eigen::Vector3d vel = along * speed;
-        const int members = u(rng) < 0.5 ? 1 : (u(rng) < 0.6 ? 2 : 3);
-        const Eigen::Vector3d beside(-along.y(), along.x(), 0.0);
-        for (int k = 0; k < members; ++k)
-        {
-            Mover m;
-            m.velocity = vel * (1.0 + 0.05 * (u(rng) - 0.5));
-            m.start = mid + beside * (0.7 * k) - m.velocity * t_mid;
-            m.size = Eigen::Vector3d(0.5, 0.5, 1.6 + 0.25 * u(rng));
-            m.label = kMovingPerson;
-            m.instance = id++;
-            m.shape = Mover::Shape::Walker;
-            m.phase = 2 * M_PI * u(rng);
-            s.movers.push_back(m);
-        }
+        addWalkers(s, rng, mid, vel, along, t_mid, id);
     }
     return s;
 }
