@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -86,6 +87,32 @@ View look(const Judge& j, const Eigen::Vector3d& p, double margin0, double margi
     if (!std::isfinite(e)) return View::None;  // no beam near the point's direction
     if (e <= d + m) return e > d - m ? View::Occupied : View::None;
     return near ? View::Vetoed : View::Free;  // passed, unless something is near it
+}
+
+/** Where scan `j`'s beam toward world point `p` (that of its own cell) returned, relative to
+ *  `p`: the return's range minus the point's (negative: nearer), with the margin at that
+ *  distance. None when the point is outside the image or that beam returned nothing. */
+struct BeamOffset
+{
+    double offset;
+    double margin;
+};
+std::optional<BeamOffset> beamOffset(const Judge& j, const Eigen::Vector3d& p, double margin0,
+                                     double margin_per_m)
+{
+    const Eigen::Vector3d q = j.Rt * (p - j.t);
+    const double rxy = std::sqrt(q.x() * q.x() + q.y() * q.y());
+    if (rxy == 0.0) return std::nullopt;
+    const double tan_el = q.z() / rxy;
+    const RangeImageLayout& l = *j.layout;
+    if (!(tan_el >= l.tan_min && tan_el < l.tan_max)) return std::nullopt;
+    const int c =
+        std::min(l.cols - 1, static_cast<int>(pseudoAzimuth(q.x(), q.y()) * (l.cols / 4.0)));
+    const int r = std::min(l.rows - 1, static_cast<int>((tan_el - l.tan_min) / l.tan_res));
+    const float own = j.at(r, c);
+    if (!std::isfinite(own)) return std::nullopt;
+    const double d = std::sqrt(rxy * rxy + q.z() * q.z());
+    return BeamOffset{static_cast<double>(own) - d, margin0 + margin_per_m * d};
 }
 
 /** What the test's scans say about one point, all opinions taken together. */
@@ -276,13 +303,62 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             gone = v == View::Free;
             return gone || v == View::Occupied;
         };
+        // Each side, walking in from the farthest judge: how far in time (in judges) the one
+        // that settled it was (0: none did).
         bool gone = false;
+        std::size_t settled_before = 0, settled_after = 0;
         for (std::size_t j = 0; j < self_pos; ++j)  // the earlier judges, oldest first
-            if (settles(judges[j], gone)) break;
+            if (settles(judges[j], gone))
+            {
+                settled_before = self_pos - j;
+                break;
+            }
         if (gone) return Verdict::Gone;
         for (std::size_t j = judges.size(); j-- > self_pos;)  // the later ones, newest first
-            if (settles(judges[j], gone)) break;
+            if (settles(judges[j], gone))
+            {
+                settled_after = j - self_pos + 1;
+                break;
+            }
         if (gone) return Verdict::Gone;
+        // A surface that moved along the beams toward the sensor (a person walking along the
+        // line of sight): walking out from the nearest judge in time, each one's beam toward
+        // the point returned within the margin of where the previous one's did (the same
+        // surface), and at last nearer than the point by more than the margin, with no judge
+        // farther out in time seeing the point occupied again. A static surface stays where it
+        // is, and one that something passes in front of is cut off, not drifted from.
+        auto drifted = [&](std::size_t count, auto judgeAt, std::size_t settled)
+        {
+            // The judges beyond the one that settled the side gave no opinion, so the beam
+            // can only have left the margin at the next one out; none settled, or the
+            // farthest saw the point occupied (a static point, mostly): nothing to find.
+            if (settled == 0 || settled >= count) return false;
+            auto offsetAt = [&](std::size_t k) -> std::optional<BeamOffset>
+            {
+                const Judge& j = judgeAt(k);
+                if (!parallax.inView(j, p_w, from_self, self_dist)) return std::nullopt;
+                return beamOffset(j, p_w, prm.free_space_margin, prm.free_space_margin_per_m);
+            };
+            const auto last = offsetAt(settled);
+            if (!last || last->offset >= -last->margin) return false;
+            double previous = 0.0;  // the point itself
+            for (std::size_t k = 0; k <= settled; ++k)
+            {
+                const auto o = k == settled ? last : offsetAt(k);
+                if (!o || std::abs(o->offset - previous) > o->margin || o->offset > o->margin)
+                    return false;
+                previous = o->offset;
+            }
+            judged = true;
+            return true;
+        };
+        if (drifted(
+                self_pos, [&](std::size_t k) -> const Judge& { return judges[self_pos - 1 - k]; },
+                settled_before) ||
+            drifted(
+                judges.size() - self_pos,
+                [&](std::size_t k) -> const Judge& { return judges[self_pos + k]; }, settled_after))
+            return Verdict::Gone;
         return judged ? Verdict::Held : Verdict::Unjudged;
     };
 
