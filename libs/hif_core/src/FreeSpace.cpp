@@ -47,19 +47,34 @@ struct Judge
     }
 };
 
-/** What scan `j` saw at world point `p` (range margin `margin(d)`). */
-View look(const Judge& j, const Eigen::Vector3d& p, double margin0, double margin_per_m)
+/** Where world point `p` lies in scan `j`'s range image: its cell and its distance from the
+ *  sensor. None outside the image's elevations (or at the sensor). */
+struct ImageCell
+{
+    int r, c;
+    double d;
+};
+std::optional<ImageCell> cellOf(const Judge& j, const Eigen::Vector3d& p)
 {
     const Eigen::Vector3d q = j.Rt * (p - j.t);
     const double rxy = std::sqrt(q.x() * q.x() + q.y() * q.y());
-    if (rxy == 0.0) return View::None;
+    if (rxy == 0.0) return std::nullopt;
     const double tan_el = q.z() / rxy;
     const RangeImageLayout& l = *j.layout;
-    if (!(tan_el >= l.tan_min && tan_el < l.tan_max)) return View::None;
-    const int c =
-        std::min(l.cols - 1, static_cast<int>(pseudoAzimuth(q.x(), q.y()) * (l.cols / 4.0)));
-    const int r = std::min(l.rows - 1, static_cast<int>((tan_el - l.tan_min) / l.tan_res));
-    const double d = std::sqrt(rxy * rxy + q.z() * q.z());
+    if (!(tan_el >= l.tan_min && tan_el < l.tan_max)) return std::nullopt;
+    return ImageCell{
+        std::min(l.rows - 1, static_cast<int>((tan_el - l.tan_min) / l.tan_res)),
+        std::min(l.cols - 1, static_cast<int>(pseudoAzimuth(q.x(), q.y()) * (l.cols / 4.0))),
+        std::sqrt(rxy * rxy + q.z() * q.z())};
+}
+
+/** What scan `j` saw at world point `p` (range margin `margin(d)`). */
+View look(const Judge& j, const Eigen::Vector3d& p, double margin0, double margin_per_m)
+{
+    const auto cell = cellOf(j, p);
+    if (!cell) return View::None;
+    const auto [r, c, d] = *cell;
+    const RangeImageLayout& l = *j.layout;
     const double m = margin0 + margin_per_m * d;
     // The beam through the point: that of its own cell, else the nearest one around it.
     const float own = j.at(r, c);
@@ -100,19 +115,11 @@ struct BeamOffset
 std::optional<BeamOffset> beamOffset(const Judge& j, const Eigen::Vector3d& p, double margin0,
                                      double margin_per_m)
 {
-    const Eigen::Vector3d q = j.Rt * (p - j.t);
-    const double rxy = std::sqrt(q.x() * q.x() + q.y() * q.y());
-    if (rxy == 0.0) return std::nullopt;
-    const double tan_el = q.z() / rxy;
-    const RangeImageLayout& l = *j.layout;
-    if (!(tan_el >= l.tan_min && tan_el < l.tan_max)) return std::nullopt;
-    const int c =
-        std::min(l.cols - 1, static_cast<int>(pseudoAzimuth(q.x(), q.y()) * (l.cols / 4.0)));
-    const int r = std::min(l.rows - 1, static_cast<int>((tan_el - l.tan_min) / l.tan_res));
-    const float own = j.at(r, c);
+    const auto cell = cellOf(j, p);
+    if (!cell) return std::nullopt;
+    const float own = j.at(cell->r, cell->c);
     if (!std::isfinite(own)) return std::nullopt;
-    const double d = std::sqrt(rxy * rxy + q.z() * q.z());
-    return BeamOffset{static_cast<double>(own) - d, margin0 + margin_per_m * d};
+    return BeamOffset{static_cast<double>(own) - cell->d, margin0 + margin_per_m * cell->d};
 }
 
 /** What the test's scans say about one point, all opinions taken together. */
