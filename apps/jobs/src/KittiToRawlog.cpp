@@ -97,8 +97,8 @@ KittiToRawlogResult KittiToRawlog::run(std::ostream& log) const
             throw std::runtime_error(
                 "--external, --compress-level, --odometry and --start-time apply to rawlogs, "
                 "not to --dynamicmap");
-        log << tag << " sequence '" << seq.dir() << "': scans " << first << ".." << last
-                  << " of " << n << " into the DynamicMap layout '" << out_file << "/pcd'\n";
+        log << tag << " sequence '" << seq.dir() << "': scans " << first << ".." << last << " of "
+            << n << " into the DynamicMap layout '" << out_file << "/pcd'\n";
         hif::apps::RunFiles files;
         files.inputKittiSequence(seq.dir(), "-i");
         files.output(hif::apps::cleanDir(out_file) + "/pcd", "the pcd/ of -o", true);
@@ -130,12 +130,12 @@ KittiToRawlogResult KittiToRawlog::run(std::ostream& log) const
                                          seq.scanFile(i) + "'");
         }
     }
-    log << tag << " sequence '" << seq.dir() << "': scans " << first << ".." << last << " of "
-              << n << ", " << total_points << " points"
-              << ", labels present and checked for " << labelled << " of them\n"
-              << tag << " writing '" << out_file << "' ("
-              << (o.external ? "points in the KITTI files" : "points inline")
-              << (level > 0 ? ", gzip level " + std::to_string(level) : ", uncompressed") << ")\n";
+    log << tag << " sequence '" << seq.dir() << "': scans " << first << ".." << last << " of " << n
+        << ", " << total_points << " points"
+        << ", labels present and checked for " << labelled << " of them\n"
+        << tag << " writing '" << out_file << "' ("
+        << (o.external ? "points in the KITTI files" : "points inline")
+        << (level > 0 ? ", gzip level " + std::to_string(level) : ", uncompressed") << ")\n";
 
     std::unique_ptr<mrpt::io::CStream> stream;
     if (level > 0)

@@ -19,10 +19,10 @@ namespace hif::jobs
 /** What to convert and how; the flags of kitti2rawlog. */
 struct KittiToRawlogOptions
 {
-    std::string input;   ///< the sequence folder
-    std::string output;  ///< the rawlog, or with `dynamicmap` the folder
-    std::optional<long long> first, last;  ///< scans first..last (default: all)
-    bool external = false;                 ///< points left in the .bin files (lazy load)
+    std::string input;                        ///< the sequence folder
+    std::string output;                       ///< the rawlog, or with `dynamicmap` the folder
+    std::optional<long long> first, last;     ///< scans first..last (default: all)
+    bool external = false;                    ///< points left in the .bin files (lazy load)
     std::optional<long long> compress_level;  ///< gzip level 1-9, 0 uncompressed
     bool odometry = false;                    ///< each pose also as CObservationOdometry
     std::optional<double> start_time;         ///< seconds since 1970 added to times.txt's
