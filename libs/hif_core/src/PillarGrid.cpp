@@ -14,38 +14,27 @@
 
 namespace hif
 {
+PillarGrid::StateHolder::StateHolder() : p_(std::make_unique<State>()) {}
+PillarGrid::StateHolder::~StateHolder() = default;
+PillarGrid::StateHolder::StateHolder(const StateHolder& other) : p_(std::make_unique<State>())
+{
+    p_->pillars = other.p_->pillars;
+    p_->arena = other.p_->arena;
+}
+PillarGrid::StateHolder& PillarGrid::StateHolder::operator=(const StateHolder& other)
+{
+    if (this != &other) *this = StateHolder(other);
+    return *this;
+}
+PillarGrid::StateHolder::StateHolder(StateHolder&& other) noexcept = default;
+PillarGrid::StateHolder& PillarGrid::StateHolder::operator=(StateHolder&& other) noexcept = default;
+
 PillarGrid::PillarGrid(const GridGeometry& geometry, const Params& params)
-    : geometry_(geometry), params_(params), state_(std::make_unique<State>())
+    : geometry_(geometry), params_(params)
 {
     params_.validateWith(geometry_);
     static_logodds_ = logit(params_.static_threshold);
 }
-
-PillarGrid::~PillarGrid() = default;
-
-PillarGrid::PillarGrid(const PillarGrid& other)
-    : geometry_(other.geometry_),
-      params_(other.params_),
-      static_logodds_(other.static_logodds_),
-      threads_(other.threads_),
-      state_(std::make_unique<State>()),
-      sensor_(other.sensor_),
-      beam_tangents_(other.beam_tangents_),
-      layout_(other.layout_),
-      scans_since_check_(other.scans_since_check_)
-{
-    state_->pillars = other.state_->pillars;
-    state_->arena = other.state_->arena;
-}
-
-PillarGrid& PillarGrid::operator=(const PillarGrid& other)
-{
-    if (this != &other) *this = PillarGrid(other);
-    return *this;
-}
-
-PillarGrid::PillarGrid(PillarGrid&& other) noexcept = default;
-PillarGrid& PillarGrid::operator=(PillarGrid&& other) noexcept = default;
 
 bool PillarGrid::empty() const { return state_->pillars.empty(); }
 

@@ -82,12 +82,6 @@ public:
      *  Params::validateWith()). */
     explicit PillarGrid(const GridGeometry& geometry = GridGeometry(),
                         const Params& params = Params());
-    ~PillarGrid();
-    PillarGrid(const PillarGrid& other);
-    PillarGrid& operator=(const PillarGrid& other);
-    /** A grid moved from may only be assigned to or destroyed. */
-    PillarGrid(PillarGrid&& other) noexcept;
-    PillarGrid& operator=(PillarGrid&& other) noexcept;
 
     /** @name Insertion and classification
      *  @{ */
@@ -190,9 +184,25 @@ private:
     double static_logodds_ = 0.0;  ///< logit(static_threshold)
     std::size_t threads_ = 1;
     /** The pillars' table, the threads and the buffers insertion and classification reuse
-     *  (GridAccess.h): a copy of a grid gets a copy of the table and buffers of its own. */
+     *  (GridAccess.h). */
     struct State;
-    std::unique_ptr<State> state_;
+    /** Owns the State: a copy holds a copy of the table (and the same threads) with buffers of
+     *  its own; one moved from may only be assigned to or destroyed. */
+    class StateHolder
+    {
+    public:
+        StateHolder();
+        ~StateHolder();
+        StateHolder(const StateHolder& other);
+        StateHolder& operator=(const StateHolder& other);
+        StateHolder(StateHolder&& other) noexcept;
+        StateHolder& operator=(StateHolder&& other) noexcept;
+        State* operator->() const { return p_.get(); }
+
+    private:
+        std::unique_ptr<State> p_;
+    };
+    StateHolder state_;
     std::optional<SensorModel> sensor_;
     std::vector<double> beam_tangents_;  ///< sensor_->beamTangents()
     RangeImageLayout layout_ = RangeImageLayout::forSensor(std::nullopt);
