@@ -47,11 +47,7 @@ void writeSummary(const std::string& file, const SummaryInfo& info,
                           {"run_files", v->spills}};
     j["pillars"] = map.pillarCount();
     j["intervals"] = map.intervalCount();
-    std::size_t kept_intervals = 0;
-    for (const auto& [idx, pillar] : map.grid().sortedPillars())
-        for (const hif::Interval& iv : pillar->intervals)
-            kept_intervals += map.grid().isStaticLogOdds(iv.logodds);
-    j["intervals_static"] = kept_intervals;  // the boxes of map.3Dscene
+    j["intervals_static"] = map.grid().staticIntervalCount();  // the boxes of map.3Dscene
     j["max_intervals_per_pillar_seen"] = map.grid().maxIntervalsInAPillar();
     j["map_bytes"] = map.grid().memoryBytes();
     j["threads"] = map.grid().threads();

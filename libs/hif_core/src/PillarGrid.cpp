@@ -147,6 +147,14 @@ std::size_t PillarGrid::intervalCount() const
     return n;
 }
 
+std::size_t PillarGrid::staticIntervalCount() const
+{
+    std::size_t n = 0;
+    for (const auto& kv : state_->pillars)
+        for (const Interval& iv : kv.second.intervals) n += isStaticLogOdds(iv.logodds);
+    return n;
+}
+
 std::size_t PillarGrid::maxIntervalsInAPillar() const
 {
     std::size_t n = 0;

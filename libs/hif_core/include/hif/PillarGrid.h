@@ -158,6 +158,8 @@ public:
     [[nodiscard]] std::size_t pillarCount() const;
     [[nodiscard]] std::size_t intervalCount() const;
     [[nodiscard]] std::size_t maxIntervalsInAPillar() const;
+    /** Intervals the map keeps (isStaticLogOdds()): the boxes getVisualizationInto() draws. */
+    [[nodiscard]] std::size_t staticIntervalCount() const;
     /** Heap memory held by the map's content: the hash table's slots and control bytes, and
      *  every pillar's interval storage (capacity). Excludes the reusable scan buffers. */
     [[nodiscard]] std::size_t memoryBytes() const;
