@@ -1,50 +1,19 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file   hif-clean/main.cpp
- * @brief  Builds the maps of an .ini (a hif::CHeightIntervalMap among them) from a rawlog, a
- *         .simplemap or a DynamicMap benchmark folder, and writes the cleaned static map, the
- *         removed points, per-scan SemanticKITTI predictions, the serialized map and a JSON
- *         summary.
+ * @brief  hif-clean's command line: moving objects removed from a LiDAR sequence (the
+ *         cleaned static map, the removed points, per-scan predictions, the map and a summary);
+ *         the work is hif::jobs::Clean (apps/jobs).
  */
 #include <mrpt/3rdparty/tclap/CmdLine.h>
-#include <mrpt/config/CConfigFile.h>
-#include <mrpt/maps/CMultiMetricMap.h>
-#include <mrpt/obs/CObservationPointCloud.h>
-
-#include <cmath>
-#include <deque>
-#include <filesystem>
-#include <fstream>
-#include <iomanip>
 #include <iostream>
-#include <sstream>
-#include <utility>
 
-#include "Outputs.h"
-#include "PoseCheck.h"
-#include "ScanSource.h"
-#include "Summary.h"
-#include "hif/CHeightIntervalMap.h"
 #include "hif/apps/Cli.h"
-#include "hif/apps/Config.h"
 #include "hif/apps/Heap.h"
-#include "hif/apps/RunFiles.h"
-#include "hif/apps/Staged.h"
-
-namespace fs = std::filesystem;
+#include "hif/jobs/Clean.h"
 
 namespace
 {
-const std::string kTag = "[hif-clean]";
-
-/** The shipped configuration for the mode and input: kitti-online.ini online, dynamicmap.ini
- *  for a DynamicMap folder, else kitti.ini. */
-std::string defaultConfig(bool online, bool dynamicmap)
-{
-    return hif::apps::shippedConfig(online ? "kitti-online.ini"
-                                           : (dynamicmap ? "dynamicmap.ini" : "kitti.ini"));
-}
-
 struct Cli
 {
     TCLAP::CmdLine cmd{
@@ -202,359 +171,30 @@ struct Cli
     TCLAP::SwitchArg quiet{"q", "quiet", "No progress bar", cmd};
 };
 
-/** What a run works with: its input, its maps and where its results go. */
-struct Run
+int run(Cli& cli)
 {
-    std::string input, poses, out_dir, cfg_file, section;
-    bool online = false, hold_scans = false, show_progress = true;
-    std::unique_ptr<hif::apps::ScanSource> source;
-    std::string dm_output;  ///< <folder>/hif_output.pcd for a DynamicMap folder, else empty
-    /** The outputs, written aside and put in place when complete. */
-    std::unique_ptr<hif::apps::StagedFolder> staged;
-    std::unique_ptr<hif::apps::StagedFile> staged_dm;
-    std::unique_ptr<hif::apps::StagedFile> staged_rawlog;  ///< --rawlog-out
-    mrpt::maps::CMultiMetricMap maps;
-    hif::CHeightIntervalMap::Ptr hif_map;
-    SensorReport sensor;  ///< the sensor model: where it came from, what contradicted it
-    hif::apps::PoseCheck pose_check;  ///< whether the poses align the first scans
-    bool poses_doubted = false;
-};
-
-/** What hif-clean writes into its output folder (and replaces, with --overwrite). */
-const std::vector<std::string> kOutputNames{
-    "summary.json", "map.hifmap",  "static_map.ply", "static_map.pcd", "removed.ply",
-    "removed.pcd",  "predictions", "map.png",        "map.3Dscene",    "classes.ply"};
-
-/** Checks the command line, opens the input, creates the maps; refuses to replace earlier
- *  results unless asked, and any output that is an input or another output of the run. */
-void setUp(Cli& cli, Run& run)
-{
-    run.input = cli.input.getValue();
-    run.out_dir = hif::apps::cleanDir(cli.output.getValue());
-    run.online = cli.online.getValue();
-    run.hold_scans = cli.hold_scans.getValue();
-    run.show_progress = !cli.quiet.getValue();
-    run.section = cli.section.getValue();
-    if (run.hold_scans && run.online)
-        throw std::runtime_error("--hold-scans applies to offline mode only (not --online)");
-    if (cli.threads.isSet()) hif::apps::flagInRange(cli.threads.getValue(), "--threads", 1, 1024);
-
-    run.poses = cli.poses.getValue();
-    run.source = hif::apps::openScanSource(run.input, {}, true, run.poses);
-    run.cfg_file = cli.config.isSet() ? cli.config.getValue()
-                                      : defaultConfig(run.online, run.source->isDynamicMapFolder());
-    hif::apps::checkConfigFile(run.cfg_file);
-    if (run.source->isDynamicMapFolder())
-        run.dm_output = hif::apps::cleanDir(run.input) + "/hif_output.pcd";
-
-    // No output may be an input or another output of this run, with or without --overwrite.
-    hif::apps::RunFiles files;
-    hif::apps::describeInputs(run.input, files, run.poses);
-    files.input(run.cfg_file, "the config");
-    for (const std::string& n : kOutputNames)
-        files.output(run.out_dir + "/" + n, "the " + n + " of -o", n == "predictions");
-    if (!run.dm_output.empty()) files.output(run.dm_output, "the DynamicMap result");
-    if (cli.rawlog_out.isSet()) files.output(cli.rawlog_out.getValue(), "--rawlog-out");
-
-    // Earlier results are replaced only when asked, and only once the new ones are complete.
-    const bool overwrite = cli.overwrite.getValue();
-    run.staged = std::make_unique<hif::apps::StagedFolder>(run.out_dir, kOutputNames, overwrite,
-                                                           "--overwrite");
-    if (!run.dm_output.empty())
-        run.staged_dm = std::make_unique<hif::apps::StagedFile>(run.dm_output, overwrite,
-                                                                "the DynamicMap result");
-    if (cli.rawlog_out.isSet())
-        run.staged_rawlog = std::make_unique<hif::apps::StagedFile>(cli.rawlog_out.getValue(),
-                                                                    overwrite, "--rawlog-out");
-
-    // Maps from the .ini, through MRPT's own machinery.
-    mrpt::config::CConfigFile cfg(run.cfg_file);
-    hif::apps::checkMapCounts(cfg, run.section, run.cfg_file);
-    mrpt::maps::TSetOfMetricMapInitializers inits;
-    inits.loadFromConfigFile(cfg, run.section);
-    run.maps.setListOfMaps(inits);
-    run.hif_map = run.maps.mapByClass<hif::CHeightIntervalMap>();
-    if (!run.hif_map)
-        throw std::runtime_error(
-            "config '" + run.cfg_file + "', section [" + run.section +
-            "] defines no CHeightIntervalMap (set CHeightIntervalMap_count=1)");
-    // Online or offline is the map's: the run follows it.
-    if (run.hif_map->params().online != run.online)
-        throw std::runtime_error(
-            "config '" + run.cfg_file + "' makes an " +
-            (run.online ? "offline map (online=false), but --online classifies each scan as it "
-                          "comes: use an online config (share/hif/config/kitti-online.ini, the "
-                          "default with --online)"
-                        : "online map (online=true), but without --online every scan is "
-                          "inserted before any is classified: add --online, or use an offline "
-                          "config (share/hif/config/kitti.ini, the default)"));
-    if (cli.threads.isSet())
-    {
-        run.hif_map->insertionOptions.threads = static_cast<uint64_t>(cli.threads.getValue());
-        run.hif_map->applyOptions();
-    }
-}
-
-void printHeader(const Run& run)
-{
-    std::cout << kTag << " input  : " << run.input
-              << (run.poses.empty() ? "" : " at the poses of " + run.poses) << "\n"
-              << kTag << " config : " << run.cfg_file << " [" << run.section << "], "
-              << run.maps.maps.size() << " map(s)\n"
-              << kTag << " mode   : "
-              << (run.online ? "online (each scan classified with the past only)"
-                             : "offline (all scans inserted, then every point classified)")
-              << "\n"
-              << kTag << " output : " << run.out_dir << "\n";
-    if (const auto& m = run.hif_map->grid().sensorModel())
-        std::cout << kTag << " sensor : " << m->describe() << " (given in the config)\n";
-    for (const std::string& w : run.source->warnings())
-        std::cout << kTag << " warning: " << w << "\n";
-}
-
-/** Refuses a scan whose pose is not finite (NaN or inf in a rawlog's pose): every point of it
- *  would be invalid, and the scan silently lost. */
-void checkPose(const Run& run, const hif::apps::Scan& scan, std::size_t k)
-{
-    const auto& p = scan.robot_pose;
-    for (const double v : {p.x(), p.y(), p.z(), p.yaw(), p.pitch(), p.roll()})
-        if (!std::isfinite(v))
-        {
-            std::ostringstream msg;
-            msg << "scan " << k << " of '" << run.input << "' has a pose that is not finite ("
-                << p.asString() << ")";
-            throw std::runtime_error(msg.str());
-        }
-}
-
-/** Refuses a scan with points outside the map's grid (a pose or an origin far off): they could
- *  be neither kept nor judged. */
-void checkInsideGrid(const Run& run, std::size_t scan)
-{
-    const hif::InsertStats& st = run.hif_map->lastInsertStats();
-    if (st.points_outside_grid == 0) return;
-    const hif::GridGeometry& g = run.hif_map->geometry();
-    std::ostringstream msg;
-    msg << "scan " << scan << " of '" << run.input << "': " << st.points_outside_grid
-        << " of its points lie outside the map's grid (more than 2^31 pillars of " << g.pillar_size
-        << " m, or 2^31 height cells of " << g.height_resolution << " m, from the origin ("
-        << g.origin_x << ", " << g.origin_y
-        << ")): check the scan's pose, or origin_x and origin_y in '" << run.cfg_file << "'";
-    throw std::runtime_error(msg.str());
-}
-
-/** Prints the sensor model when the map estimated it from scan `k`, and a warning when scan
- *  `k` contradicted it (the first few; all are counted in summary.json). */
-void reportSensor(Run& run, std::size_t k)
-{
-    const hif::InsertStats& st = run.hif_map->lastInsertStats();
-    SensorReport& r = run.sensor;
-    if (st.sensor_estimated)
-    {
-        r.estimated_from_scan = k;
-        std::cout << kTag << " sensor : " << run.hif_map->grid().sensorModel()->describe()
-                  << " (estimated from scan " << k << ")\n";
-    }
-    if (st.sensor_checked) ++r.checks;
-    if (st.sensor_contradiction.empty()) return;
-    constexpr std::size_t kShown = 3;
-    if (r.contradictions.size() < kShown)
-        std::cout << kTag << " warning: scan " << k << " does not look like the sensor "
-                  << (r.estimated_from_scan
-                          ? "of scan " + std::to_string(*r.estimated_from_scan) +
-                                " (are the scans from one LiDAR?)"
-                          : std::string("given in the config (is it this LiDAR's?)"))
-                  << ": " << st.sensor_contradiction << "\n";
-    r.contradictions.push_back("scan " + std::to_string(k) + ": " + st.sensor_contradiction);
-}
-
-/** Points of a scan when its type says so without converting it (a point cloud), else 0. */
-std::size_t pointsOf(const mrpt::obs::CObservation& obs)
-{
-    const auto* pc = dynamic_cast<const mrpt::obs::CObservationPointCloud*>(&obs);
-    return pc && pc->pointcloud ? pc->pointcloud->size() : 0;
-}
-
-/** Pass 1: every scan inserted (and, online, classified right after). Returns the scans held
- *  for pass 2 with --hold-scans. */
-std::vector<hif::apps::Scan> insertAll(Run& run, Outputs& out, Timings& t)
-{
-    std::vector<hif::apps::Scan> held;
-    hif::apps::Progress progress(kTag, run.online ? "inserting+classifying" : "inserting",
-                                 run.source->knownSize(), run.show_progress);
-    hif::apps::Scan scan;
-    while (run.source->next(scan))
-    {
-        scan.obs->load();
-        checkPose(run, scan, t.scans);
-        const auto t0 = Clock::now();
-        run.maps.insertObservation(*scan.obs, scan.robot_pose);
-        const double ms = msSince(t0);
-        checkInsideGrid(run, t.scans);
-        reportSensor(run, t.scans);
-        if (!run.pose_check.done())
-            if (const auto doubt = run.pose_check.add(scan))
-            {
-                std::cout << kTag << " warning: " << *doubt << std::endl;
-                run.poses_doubted = true;
-            }
-        t.insert_ms.push_back(ms);
-        t.points += pointsOf(*scan.obs);
-        if (run.online)
-        {
-            out.classifyAndWrite(*run.hif_map, scan, t.scans);
-            t.scan_ms.push_back(ms + out.classify_ms.back());
-        }
-        else
-            t.scan_ms.push_back(ms);
-        if (run.hold_scans)
-            held.push_back(scan);
-        else
-            scan.obs->unload();
-        ++t.scans;
-        progress.update(t.scans);
-    }
-    progress.finish();
-    if (t.scans == 0) throw std::runtime_error("input '" + run.input + "' holds no scans");
-    return held;
-}
-
-/** Pass 2 (offline): every point of every scan classified against the final map, and, with
- *  the free-space test on, by the free_space_window scans on each side of it: the scans are
- *  read again and given to the map's test in their order, and scan k is classified once scan k
- *  + free_space_window is in (read ahead and held until then). */
-void classifyAll(Run& run, std::vector<hif::apps::Scan>& held, Outputs& out, std::size_t scans)
-{
-    hif::apps::Progress progress(kTag, "classifying", scans, run.show_progress);
-    const std::size_t w = run.hif_map->params().free_space_window;
-    std::deque<hif::apps::Scan> ahead;  // read, not yet classified
-    std::size_t next = 0;               // the next scan to read
-    if (!run.hold_scans) run.source->rewind();
-    for (std::size_t k = 0; k < scans; ++k)
-    {
-        while (next < scans && next <= k + w)
-        {
-            hif::apps::Scan s;
-            if (run.hold_scans)
-                s = std::move(held[next]);  // released once classified
-            else if (!run.source->next(s))
-                throw std::runtime_error("input '" + run.input + "' held " + std::to_string(scans) +
-                                         " scans when first read, " + std::to_string(next) +
-                                         " now");
-            s.obs->load();
-            if (w > 0) run.hif_map->addToFreeSpaceTest(*s.obs, s.robot_pose);
-            ahead.push_back(std::move(s));
-            ++next;
-        }
-        out.classifyAndWrite(*run.hif_map, ahead.front(), k);
-        if (!run.hold_scans) ahead.front().obs->unload();
-        ahead.pop_front();
-        progress.update(k + 1);
-    }
-    progress.finish();
-}
-
-int runClean(Cli& cli)
-{
-    const auto t_start = Clock::now();
-    Run run;
-    setUp(cli, run);
-    printHeader(run);
-
-    const std::string dir = run.staged->path();
-    const std::string& format = cli.format.getValue();
-    std::vector<std::string> extensions;
-    if (format != "pcd") extensions.push_back(".ply");
-    if (format != "ply") extensions.push_back(".pcd");
-    std::vector<std::string> static_files, removed_files;
-    for (const std::string& ext : extensions)
-    {
-        static_files.push_back(dir + "/static_map" + ext);
-        removed_files.push_back(dir + "/removed" + ext);
-    }
-    std::vector<std::string> voxel_files;
-    if (cli.voxel.isSet())
-    {
-        const double v = cli.voxel.getValue();
-        if (!(v >= 0.001 && v <= 100.0))
-            throw std::runtime_error("--voxel " + std::to_string(v) +
-                                     ": give the voxel's side in metres, from 0.001 to 100");
-        voxel_files = std::exchange(static_files, {});
-    }
-    if (run.staged_dm) static_files.push_back(run.staged_dm->path());  // the benchmark's
-    std::optional<std::size_t> first_frame;
-    if (cli.first_frame.isSet())
-        first_frame = static_cast<std::size_t>(
-            hif::apps::flagInRange(cli.first_frame.getValue(), "--first-frame", 0, 999999));
-    Outputs out(dir, first_frame, std::move(static_files), std::move(removed_files));
-    if (cli.voxel_memory.isSet() && voxel_files.empty())
-        throw std::runtime_error("--voxel-memory goes with --voxel");
-    const auto voxel_mib = static_cast<std::size_t>(
-        hif::apps::flagInRange(cli.voxel_memory.getValue(), "--voxel-memory", 1, 1 << 20));
-    if (!voxel_files.empty())
-        out.mergeKept(cli.voxel.getValue(), std::move(voxel_files), voxel_mib << 20);
-    if (!cli.no_png.getValue()) out.drawPicture();
-    if (cli.rawlog_compress.isSet() && !run.staged_rawlog)
-        throw std::runtime_error("--rawlog-compress goes with --rawlog-out");
-    const int level = static_cast<int>(
-        hif::apps::flagInRange(cli.rawlog_compress.getValue(), "--rawlog-compress", 0, 9));
-    if (run.staged_rawlog)
-        out.writeRawlog(run.staged_rawlog->path(), cli.rawlog_out.getValue(), level);
-    if (cli.classes_ply.getValue()) out.writeClasses(dir + "/classes.ply");
-    if (cli.scene.getValue()) out.collectRemoved();
-    if (cli.scan_numbers.getValue()) out.writeScanNumbers();
-    Timings t;
-    t.setup_s = msSince(t_start) / 1000.0;
-    auto t_pass = Clock::now();
-    std::vector<hif::apps::Scan> held = insertAll(run, out, t);
-    t.insert_pass_s = msSince(t_pass) / 1000.0;
-    if (!run.online)
-    {
-        out.expectKept(t.points);  // most points are kept
-        out.pictureCovers(*run.hif_map);
-        t_pass = Clock::now();
-        classifyAll(run, held, out, t.scans);
-        t.classify_pass_s = msSince(t_pass) / 1000.0;
-    }
-
-    const auto t_files = Clock::now();
-    hif::apps::returnFreeHeap();  // the scans' buffers, kept for reuse, go back now
-    out.close();
-    const std::size_t rawlog_scans = out.closeRawlog();
-    run.hif_map->saveToFile(dir + "/map.hifmap");
-    std::ostringstream title;
-    title << "hif-clean " << fs::path(run.input).filename().string() << ": " << t.scans
-          << " scans, " << out.points_kept << " points kept, " << out.points_removed
-          << " removed (red)";
-    const auto picture = out.writePicture(dir + "/map.png", title.str());
-    if (cli.scene.getValue()) out.writeScene(*run.hif_map, dir + "/map.3Dscene");
-    t.finish_s = msSince(t_files) / 1000.0;
-    t.files_ms = msSince(t_files) + out.write_ms_total;
-    t.total_s = msSince(t_start) / 1000.0;
-
-    SummaryInfo info{
-        run.input, run.cfg_file, run.online,      run.hold_scans,   run.source->skippedObjects(),
-        picture,   run.sensor,   &run.pose_check, run.poses_doubted};
-    writeSummary(dir + "/summary.json", info, *run.hif_map, out, t);
-    run.staged->commit();
-    if (run.staged_dm) run.staged_dm->commit();
-    if (run.staged_rawlog)
-    {
-        run.staged_rawlog->commit();
-        std::cout << kTag << " wrote " << cli.rawlog_out.getValue() << ": " << rawlog_scans
-                  << " scans without their dynamic points" << std::endl;
-    }
-    std::vector<std::string> extra;
-    if (cli.classes_ply.getValue()) extra.emplace_back("classes.ply");
-    if (cli.scene.getValue()) extra.emplace_back("map.3Dscene");
-    printReport(kTag, run.out_dir, format, run.dm_output, run.online, *run.hif_map, out, t, extra);
-    if (out.drawsPicture() && !picture)
-        std::cout << kTag << " map.png not drawn: no point could be drawn\n";
-    if (picture && picture->points_outside > 0)
-        std::cout << kTag << " map.png shows the map's main area: " << picture->points_outside
-                  << " of " << picture->points
-                  << " points lie apart from it (more than 100 m of empty ground away: stray "
-                     "points, or poses far off) and are not drawn\n";
+    hif::jobs::CleanOptions o;
+    o.input = cli.input.getValue();
+    o.poses = cli.poses.getValue();
+    o.output = cli.output.getValue();
+    if (cli.config.isSet()) o.config = cli.config.getValue();
+    o.section = cli.section.getValue();
+    o.format = cli.format.getValue();
+    o.picture = !cli.no_png.getValue();
+    if (cli.rawlog_out.isSet()) o.rawlog_out = cli.rawlog_out.getValue();
+    if (cli.rawlog_compress.isSet()) o.rawlog_compress = cli.rawlog_compress.getValue();
+    if (cli.voxel.isSet()) o.voxel = cli.voxel.getValue();
+    if (cli.voxel_memory.isSet()) o.voxel_memory = cli.voxel_memory.getValue();
+    o.classes_ply = cli.classes_ply.getValue();
+    o.scan_numbers = cli.scan_numbers.getValue();
+    o.scene = cli.scene.getValue();
+    o.online = cli.online.getValue();
+    if (cli.first_frame.isSet()) o.first_frame = cli.first_frame.getValue();
+    o.overwrite = cli.overwrite.getValue();
+    if (cli.threads.isSet()) o.threads = cli.threads.getValue();
+    o.hold_scans = cli.hold_scans.getValue();
+    o.show_progress = !cli.quiet.getValue();
+    hif::jobs::Clean(o).run(std::cout);
     return 0;
 }
 }  // namespace
@@ -562,5 +202,5 @@ int runClean(Cli& cli)
 int main(int argc, char** argv)
 {
     hif::apps::keepScanBuffersInTheHeap();
-    return hif::apps::cliMain<Cli>(kTag.c_str(), argc, argv, runClean);
+    return hif::apps::cliMain<Cli>("[hif-clean]", argc, argv, run);
 }

@@ -17,13 +17,13 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "ScanSource.h"
 #include "Trajectory.h"
 #include "VoxelMap.h"
 #include "hif/CHeightIntervalMap.h"
 #include "hif/apps/Cli.h"
 #include "hif/apps/Config.h"
 #include "hif/apps/RunFiles.h"
+#include "hif/apps/ScanSource.h"
 #include "hif/apps/Staged.h"
 #include "hif/io/CloudFiles.h"
 #include "hif/io/KittiSequence.h"

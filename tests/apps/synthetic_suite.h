@@ -2,7 +2,8 @@
 /**
  * @file   synthetic_suite.h
  * @brief  Test helper: a test suite whose tests share one short synthetic sequence (6 scans) and
- *         its rawlog, made once for the suite, in a work folder that goes when the suite passes.
+ *         its rawlog, made once for the suite (in process), in a work folder that goes when the
+ * suite passes.
  */
 #pragma once
 
@@ -16,6 +17,7 @@
 #include <string>
 
 #include "app_runner.h"
+#include "job_runner.h"
 
 namespace hif::test
 {
@@ -30,10 +32,8 @@ protected:
         work_ = std::make_unique<WorkDir>(kWork + "/" + Suite::kFolder + "_" +
                                           std::to_string(getpid()));
         root_ = work_->path();
-        const auto g = runApp("hif-synthetic-kitti", "-o " + root_ + "/seq -n 6");
-        const auto c =
-            g.code == 0 ? runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + root_ + "/all.rawlog")
-                        : g;
+        const auto g = synthesize(root_ + "/seq", 6);
+        const auto c = g.code == 0 ? toRawlog(root_ + "/seq", root_ + "/all.rawlog") : g;
         setup_ok_ = g.code == 0 && c.code == 0;
         setup_log_ = g.output + c.output;
     }

@@ -45,12 +45,18 @@
 #include "hif/io/KittiSequence.h"
 #include "hif/io/Labels.h"
 #include "hif/io/Rings.h"
+#include "job_runner.h"
 #include "kitti_fixture.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
 using hif::test::bytesOf;
+using hif::test::clean;
+using hif::test::evaluate;
+using hif::test::synthesize;
+using hif::test::toRawlog;
+using Options = hif::jobs::CleanOptions;
 using hif::test::expectError;
 using hif::test::readJson;
 using hif::test::runApp;
@@ -271,10 +277,8 @@ protected:
         work_ =
             std::make_unique<WorkDir>(hif::test::kWork + "/synthetic_" + std::to_string(getpid()));
         root_ = work_->path();
-        const auto g = runApp("hif-synthetic-kitti", "-o " + root_ + "/seq --scans 20");
-        const auto c = g.code == 0 ? runApp("kitti2rawlog",
-                                            "-i " + root_ + "/seq -o " + root_ + "/scans.rawlog")
-                                   : g;
+        const auto g = synthesize(root_ + "/seq", 20);
+        const auto c = g.code == 0 ? toRawlog(root_ + "/seq", root_ + "/scans.rawlog") : g;
         setup_ok_ = g.code == 0 && c.code == 0;
         setup_log_ = g.output + c.output;
     }
@@ -298,20 +302,24 @@ TEST_F(SyntheticPipeline, OfflineAndOnlineCleaningScoreAndWriteEverything)
         SCOPED_TRACE(mode);
         const std::string out = root_ + "/" + mode;
         // Offline with both cloud formats, the others with the default (PLY only).
-        const std::string flags = mode == "online" ? " --online"
-                                  : mode == "held" ? " --hold-scans"
-                                                   : " --format both";
-        const auto r =
-            runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + out + " -q" + flags);
+        const auto r = clean(root_ + "/scans.rawlog", out,
+                             [&](Options& o)
+                             {
+                                 o.online = mode == "online";
+                                 o.hold_scans = mode == "held";
+                                 if (mode == "offline") o.format = "both";
+                             });
         ASSERT_EQ(r.code, 0) << r.output;
         // Offline, also the picture of the four outcomes.
-        const std::string png_flags =
-            mode == "offline" ? " --scans " + root_ + "/seq/velodyne --png " + out +
-                                    "/outcomes.png --classes-ply " + out + "/outcomes.ply"
-                              : "";
-        const auto e =
-            runApp("hif-eval", "--labels " + root_ + "/seq/labels --predictions " + out +
-                                   "/predictions --json " + out + "/scores.json" + png_flags);
+        const auto e = evaluate(root_ + "/seq/labels", out + "/predictions",
+                                [&](hif::jobs::EvaluateOptions& o)
+                                {
+                                    o.json = out + "/scores.json";
+                                    if (mode != "offline") return;
+                                    o.scans = root_ + "/seq/velodyne";
+                                    o.png = out + "/outcomes.png";
+                                    o.classes_ply = out + "/outcomes.ply";
+                                });
         ASSERT_EQ(e.code, 0) << e.output;
         const json s = readJson(out + "/scores.json")["total"];
         // Measured (demo, 30 scans): offline SA 99.35 / DA 97.98, online SA 98.95 / DA 95.95.
@@ -417,10 +425,17 @@ TEST_F(SyntheticPipeline, OfflineAndOnlineCleaningScoreAndWriteEverything)
 TEST_F(SyntheticPipeline, ThreadsAndHeldScansGiveIdenticalResults)
 {
     const std::string a = root_ + "/one_thread", b = root_ + "/two_threads_held";
-    auto r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + a + " -q --threads 1");
+    auto r = clean(root_ + "/scans.rawlog", a, [](Options& o) { o.threads = 1; });
     ASSERT_EQ(r.code, 0) << r.output;
-    r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + b +
-                                " -q --threads 2 --hold-scans --no-png --scene --classes-ply");
+    r = clean(root_ + "/scans.rawlog", b,
+              [](Options& o)
+              {
+                  o.threads = 2;
+                  o.hold_scans = true;
+                  o.picture = false;
+                  o.scene = true;
+                  o.classes_ply = true;
+              });
     ASSERT_EQ(r.code, 0) << r.output;
     // The last line says what was written, the files asked for too.
     EXPECT_NE(r.output.find("predictions/, map.hifmap, classes.ply, map.3Dscene, summary.json"),
@@ -494,18 +509,25 @@ TEST_F(SyntheticPipeline, ThreadsAndHeldScansGiveIdenticalResults)
     EXPECT_GT(map_bytes, 12.0 * sa["intervals"].get<double>());
     EXPECT_LT(map_bytes, sa["peak_rss_mb"].get<double>() * 1024 * 1024);
 
-    r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + root_ +
-                                "/x -q --online "
-                                "--hold-scans");
+    const std::string rawlog = root_ + "/scans.rawlog", x = root_ + "/x";
+    r = clean(rawlog, x,
+              [](Options& o)
+              {
+                  o.online = true;
+                  o.hold_scans = true;
+              });
     expectError(r, "--hold-scans applies to offline mode only");
     // Online or offline is the map's (its config's `online`): a run the other way is refused.
-    r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + root_ +
-                                "/x -q --online -c " HIF_SHARE_DIR "/config/kitti.ini");
+    r = clean(rawlog, x,
+              [](Options& o)
+              {
+                  o.online = true;
+                  o.config = HIF_SHARE_DIR "/config/kitti.ini";
+              });
     expectError(r, "makes an offline map (online=false), but --online classifies each scan");
-    r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + root_ +
-                                "/x -q -c " HIF_SHARE_DIR "/config/kitti-online.ini");
+    r = clean(rawlog, x, [](Options& o) { o.config = HIF_SHARE_DIR "/config/kitti-online.ini"; });
     expectError(r, "makes an online map (online=true), but without --online");
-    r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + root_ + "/x -q --threads 0");
+    r = clean(rawlog, x, [](Options& o) { o.threads = 0; });
     expectError(r, "--threads 0 is not in [1, 1024]");
 }
 
@@ -607,9 +629,9 @@ TEST_F(SyntheticPipeline, DynamicMapFolderLayoutIsReadAndItsOutputWritten)
 TEST_F(SyntheticPipeline, KittiAndDynamicMapFoldersGiveTheRawlogsResult)
 {
     const std::string from_rawlog = root_ + "/ref_rawlog", from_folder = root_ + "/ref_folder";
-    auto r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + from_rawlog + " -q");
+    auto r = clean(root_ + "/scans.rawlog", from_rawlog);
     ASSERT_EQ(r.code, 0) << r.output;
-    r = runApp("hif-clean", "-i " + root_ + "/seq -o " + from_folder + " -q");
+    r = clean(root_ + "/seq", from_folder);
     ASSERT_EQ(r.code, 0) << r.output;
     for (const std::string f : {"/static_map.ply", "/removed.ply", "/map.hifmap"})
         EXPECT_EQ(bytesOf(from_rawlog + f), bytesOf(from_folder + f)) << f;
@@ -622,7 +644,12 @@ TEST_F(SyntheticPipeline, KittiAndDynamicMapFoldersGiveTheRawlogsResult)
 
     const std::string dm = root_ + "/dm_from_kitti";
     fs::remove_all(dm);
-    r = runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + dm + " --dynamicmap --last 9");
+    r = toRawlog(root_ + "/seq", dm,
+                 [](hif::jobs::KittiToRawlogOptions& o)
+                 {
+                     o.dynamicmap = true;
+                     o.last = 9;
+                 });
     ASSERT_EQ(r.code, 0) << r.output;
     ASSERT_TRUE(fs::exists(dm + "/pcd/000009.pcd"));
     EXPECT_FALSE(fs::exists(dm + "/pcd/000010.pcd"));
@@ -639,13 +666,16 @@ TEST_F(SyntheticPipeline, KittiAndDynamicMapFoldersGiveTheRawlogsResult)
     // Cleaned with the same config as the rawlog: the same classes but for float rounding
     // (measured: 151 of 629,853 points here; 9 of 4.9 M on KITTI 08).
     const std::string a = root_ + "/ref10_rawlog";
-    r = runApp("kitti2rawlog",
-               "-i " + root_ + "/seq -o " + root_ + "/first10.rawlog --last 9 --overwrite");
+    r = toRawlog(root_ + "/seq", root_ + "/first10.rawlog",
+                 [](hif::jobs::KittiToRawlogOptions& o)
+                 {
+                     o.last = 9;
+                     o.overwrite = true;
+                 });
     ASSERT_EQ(r.code, 0) << r.output;
-    r = runApp("hif-clean", "-i " + root_ + "/first10.rawlog -o " + a + " -q");
+    r = clean(root_ + "/first10.rawlog", a);
     ASSERT_EQ(r.code, 0) << r.output;
-    r = runApp("hif-clean",
-               "-i " + dm + " -o " + dm + "/out -q -c " HIF_SHARE_DIR "/config/kitti.ini");
+    r = clean(dm, dm + "/out", [](Options& o) { o.config = HIF_SHARE_DIR "/config/kitti.ini"; });
     ASSERT_EQ(r.code, 0) << r.output;
     std::size_t points = 0, differ = 0;
     for (int i = 0; i < 10; ++i)
@@ -716,34 +746,44 @@ TEST(HifClean, PlacesPointsAtTheRobotPoseComposedWithTheSensorPose)
 namespace
 {
 /** A synthetic clip of `scene` (10 scans), converted to a rawlog in `seq`. */
-void makeClip(const std::string& seq, const std::string& scene, const std::string& speed,
-              const std::string& seed)
+void makeClip(const std::string& seq, const std::string& scene, double speed, long long seed)
 {
-    auto r = runApp("hif-synthetic-kitti", "-o " + seq + " --scene " + scene +
-                                               " -n 10 --ego-speed " + speed + " --seed " + seed);
+    auto r = synthesize(seq, 10,
+                        [&](hif::jobs::SyntheticKittiOptions& o)
+                        {
+                            o.scene = scene;
+                            o.ego_speed = speed;
+                            o.seed = seed;
+                        });
     ASSERT_EQ(r.code, 0) << r.output;
-    r = runApp("kitti2rawlog", "-i " + seq + " -o " + seq + "/scans.rawlog");
+    r = toRawlog(seq, seq + "/scans.rawlog");
     ASSERT_EQ(r.code, 0) << r.output;
 }
 
-/** hif-clean with `flags` on `input` (into `out`), scored by hif-eval against `labels`: the
- *  scores' JSON. */
+/** The cleaning (in process) of `input` into `out` with what `set` changes, scored by hif-eval
+ *  against `labels`: the scores' JSON. */
 json cleanAndScoreInput(const std::string& input, const std::string& labels, const std::string& out,
-                        const std::string& flags)
+                        const std::function<void(Options&)>& set = {})
 {
-    const auto c = runApp("hif-clean", "-i " + input + " -o " + out + " -q " + flags);
+    const auto c = clean(input, out, set);
     EXPECT_EQ(c.code, 0) << c.output;
-    const auto e = runApp("hif-eval", "--labels " + labels + " --predictions " + out +
-                                          "/predictions -q --json " + out + "/scores.json");
+    const auto e = evaluate(labels, out + "/predictions",
+                            [&](hif::jobs::EvaluateOptions& o) { o.json = out + "/scores.json"; });
     EXPECT_EQ(e.code, 0) << e.output;
     return readJson(out + "/scores.json");
 }
 
 /** cleanAndScoreInput() on the rawlog of the clip in `seq` (into seq/name). */
-json cleanAndScore(const std::string& seq, const std::string& name, const std::string& flags)
+json cleanAndScore(const std::string& seq, const std::string& name,
+                   const std::function<void(Options&)>& set = {})
 {
-    return cleanAndScoreInput(seq + "/scans.rawlog", seq + "/labels", seq + "/" + name, flags);
+    return cleanAndScoreInput(seq + "/scans.rawlog", seq + "/labels", seq + "/" + name, set);
 }
+
+/** What the options become for the paper's method, online, or without a picture. */
+void paperConfig(Options& o) { o.config = HIF_SHARE_DIR "/config/kitti-paper.ini"; }
+void onlineMode(Options& o) { o.online = true; }
+void noPicture(Options& o) { o.picture = false; }
 }  // namespace
 
 // People walking in short clips, the sensor standing or moving at 3 m/s: the map alone keeps
@@ -756,15 +796,14 @@ TEST(Walkers, SyntheticWalkersAreRemovedOfflineAndOnline)
                         "sanitizers the same pipeline runs in SyntheticPipeline.* (this test "
                         "takes 45 s there)";
     const WorkDir work = workDir("walkers_" + std::to_string(getpid()));
-    for (const auto& [speed, seed] : {std::pair{"0", "3"}, std::pair{"3", "2"}})
+    for (const auto& [speed, seed] : {std::pair{0, 3}, std::pair{3, 2}})
     {
-        const std::string seq = work.path() + "/v" + std::string(speed);
+        const std::string seq = work.path() + "/v" + std::to_string(speed);
         SCOPED_TRACE(seq);
         ASSERT_NO_FATAL_FAILURE(makeClip(seq, "walkers", speed, seed));
-        const json paper =
-            cleanAndScore(seq, "paper", "-c " HIF_SHARE_DIR "/config/kitti-paper.ini");
-        const json offline = cleanAndScore(seq, "offline", "");
-        const json online = cleanAndScore(seq, "online", "--online");
+        const json paper = cleanAndScore(seq, "paper", paperConfig);
+        const json offline = cleanAndScore(seq, "offline");
+        const json online = cleanAndScore(seq, "online", onlineMode);
         const double paper_da = paper["per_moving_class"]["moving-person"]["DA"].get<double>();
         // Measured: person DA 97 and 92 offline, 86 and 77 online (the paper: under 40; testing
         // the first point of a run alone gave 96 and 86 offline, 75 and 70 online).
@@ -790,9 +829,9 @@ TEST(Walkers, WalkersAlongTheLineOfSightAreRemovedInPart)
     if (HIF_SANITIZED)
         GTEST_SKIP() << "removal floors: the plain suite (scripts/test.sh) checks them";
     const WorkDir work = workDir("radial_" + std::to_string(getpid()));
-    for (const auto& [speed, seed] : {std::pair{"0", "1"}, std::pair{"3", "2"}})
+    for (const auto& [speed, seed] : {std::pair{0, 1}, std::pair{3, 2}})
     {
-        const std::string seq = work.path() + "/v" + std::string(speed);
+        const std::string seq = work.path() + "/v" + std::to_string(speed);
         SCOPED_TRACE(seq);
         ASSERT_NO_FATAL_FAILURE(makeClip(seq, "radial", speed, seed));
         // The scene is what it says: each person seen in the first and the last scan moved along
@@ -830,10 +869,9 @@ TEST(Walkers, WalkersAlongTheLineOfSightAreRemovedInPart)
             ++people;
         }
         EXPECT_GE(people, 3u);
-        const json paper =
-            cleanAndScore(seq, "paper", "-c " HIF_SHARE_DIR "/config/kitti-paper.ini");
-        const json offline = cleanAndScore(seq, "offline", "");
-        const json online = cleanAndScore(seq, "online", "--online");
+        const json paper = cleanAndScore(seq, "paper", paperConfig);
+        const json offline = cleanAndScore(seq, "offline");
+        const json online = cleanAndScore(seq, "online", onlineMode);
         for (const json* s : {&offline, &online})
         {
             EXPECT_GE((*s)["total"]["SA"].get<double>(), 99.5);
@@ -856,10 +894,10 @@ TEST(Cyclists, SyntheticCyclistsAreRemovedOfflineAndOnline)
                         "takes 45 s there)";
     const WorkDir work = workDir("cyclists_" + std::to_string(getpid()));
     const std::string seq = work.path() + "/v3";
-    ASSERT_NO_FATAL_FAILURE(makeClip(seq, "cyclists", "3", "2"));
-    const json paper = cleanAndScore(seq, "paper", "-c " HIF_SHARE_DIR "/config/kitti-paper.ini");
-    const json offline = cleanAndScore(seq, "offline", "");
-    const json online = cleanAndScore(seq, "online", "--online");
+    ASSERT_NO_FATAL_FAILURE(makeClip(seq, "cyclists", 3, 2));
+    const json paper = cleanAndScore(seq, "paper", paperConfig);
+    const json offline = cleanAndScore(seq, "offline");
+    const json online = cleanAndScore(seq, "online", onlineMode);
     auto da = [](const json& s)
     { return s["per_moving_class"]["moving-bicyclist"]["DA"].get<double>(); };
     // Measured: DA 90.5 offline, 80.0 online; the paper 71.2.
@@ -886,7 +924,7 @@ TEST_P(RealKitti, OfflineCleaningMeetsTheFloors)
     const std::string& w = work.path();
     auto r = runApp("kitti2rawlog", "-i " + dir + " -o " + w + "/scans.rawlog --external");
     ASSERT_EQ(r.code, 0) << r.output;
-    const json scores = cleanAndScoreInput(w + "/scans.rawlog", dir + "/labels", w + "/out", "");
+    const json scores = cleanAndScoreInput(w + "/scans.rawlog", dir + "/labels", w + "/out");
     const json& s = scores["total"];
     EXPECT_GE(s["SA"].get<double>(), sa_floor) << s;
     EXPECT_GE(s["AA"].get<double>(), aa_floor) << s;
@@ -932,7 +970,7 @@ TEST(RealKittiRings, SparserCopiesOf04KeepTheirRingsAndLabelsAndAreCleaned)
             EXPECT_EQ(hif::io::readLabels(sparse.labelFile(i)).size(), sparse.pointCount(i));
             EXPECT_NEAR(double(sparse.pointCount(i)) / double(full.pointCount(i)), 1.0 / k, 0.05);
         }
-        const json s = cleanAndScoreInput(seq, seq + "/labels", seq + "_out", "--no-png")["total"];
+        const json s = cleanAndScoreInput(seq, seq + "/labels", seq + "_out", noPicture)["total"];
         EXPECT_GE(s["SA"].get<double>(), sa_floor) << s;
         EXPECT_GE(s["AA"].get<double>(), aa_floor) << s;
     }
@@ -944,16 +982,19 @@ TEST_F(SyntheticPipeline, RawlogOutHoldsTheKeptPointsForMrptTools)
 {
     const std::string d = root_ + "/rawlog_out";
     fs::remove_all(d);
-    auto r = runApp("hif-clean", "-i " + root_ + "/seq -o " + d + "/out -q --no-png --rawlog-out " +
-                                     d + "/clean.rawlog");
+    auto r = clean(root_ + "/seq", d + "/out",
+                   [&](Options& o)
+                   {
+                       o.picture = false;
+                       o.rawlog_out = d + "/clean.rawlog";
+                   });
     ASSERT_EQ(r.code, 0) << r.output;
     const json first = readJson(d + "/out/summary.json");
     // Refused without --overwrite, like every output.
-    r = runApp("hif-clean",
-               "-i " + root_ + "/seq -o " + d + "/out2 -q --rawlog-out " + d + "/clean.rawlog");
+    r = clean(root_ + "/seq", d + "/out2", [&](Options& o) { o.rawlog_out = d + "/clean.rawlog"; });
     expectError(r, "clean.rawlog' already exists");
     // Read back: the same scans (numbered as before), and only the points that were kept.
-    r = runApp("hif-clean", "-i " + d + "/clean.rawlog -o " + d + "/again -q --no-png");
+    r = clean(d + "/clean.rawlog", d + "/again", noPicture);
     ASSERT_EQ(r.code, 0) << r.output;
     const json again = readJson(d + "/again/summary.json");
     EXPECT_EQ(again["scans"], first["scans"]);
@@ -961,21 +1002,30 @@ TEST_F(SyntheticPipeline, RawlogOutHoldsTheKeptPointsForMrptTools)
     EXPECT_EQ(again["skipped_objects"], 0);
     EXPECT_TRUE(fs::exists(d + "/again/predictions/000019.label"));
     // Compressed on request (gzip, as kitti2rawlog -z), and read back the same.
-    r = runApp("hif-clean", "-i " + root_ + "/seq -o " + d + "/gz -q --no-png --rawlog-out " + d +
-                                "/clean.rawlog.gz --rawlog-compress 6");
+    r = clean(root_ + "/seq", d + "/gz",
+              [&](Options& o)
+              {
+                  o.picture = false;
+                  o.rawlog_out = d + "/clean.rawlog.gz";
+                  o.rawlog_compress = 6;
+              });
     ASSERT_EQ(r.code, 0) << r.output;
     const std::string gz = hif::test::bytesOf(d + "/clean.rawlog.gz");
     ASSERT_GT(gz.size(), 2u);
     EXPECT_EQ(uint8_t(gz[0]), 0x1f);
     EXPECT_EQ(uint8_t(gz[1]), 0x8b);
     EXPECT_LT(gz.size(), fs::file_size(d + "/clean.rawlog"));
-    r = runApp("hif-clean", "-i " + d + "/clean.rawlog.gz -o " + d + "/again_gz -q --no-png");
+    r = clean(d + "/clean.rawlog.gz", d + "/again_gz", noPicture);
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_EQ(readJson(d + "/again_gz/summary.json")["points_in"], first["points_kept"]);
-    expectError(runApp("hif-clean", "-i " + root_ + "/seq -o " + d + "/gz2 -q --rawlog-compress 6"),
+    expectError(clean(root_ + "/seq", d + "/gz2", [](Options& o) { o.rawlog_compress = 6; }),
                 "--rawlog-compress goes with --rawlog-out");
-    expectError(runApp("hif-clean", "-i " + root_ + "/seq -o " + d + "/gz3 -q --rawlog-out " + d +
-                                        "/x.rawlog --rawlog-compress 12"),
+    expectError(clean(root_ + "/seq", d + "/gz3",
+                      [&](Options& o)
+                      {
+                          o.rawlog_out = d + "/x.rawlog";
+                          o.rawlog_compress = 12;
+                      }),
                 "--rawlog-compress 12 is not in [0, 9]");
     if (std::system("command -v rawlog-edit > /dev/null 2>&1") == 0)
     {
@@ -1032,9 +1082,9 @@ TEST_F(SyntheticPipeline, Kitti2rawlogWritesTheTrajectoryAsOdometryAndRealTimes)
     }
     EXPECT_GT(travelled, 1.0);  // the sensor moves in the synthetic clip
     // hif-clean: the same points kept as from the rawlog without odometry, no object skipped.
-    r = runApp("hif-clean", "-i " + d + "/odo.rawlog -o " + d + "/clean -q --no-png");
+    r = clean(d + "/odo.rawlog", d + "/clean", noPicture);
     ASSERT_EQ(r.code, 0) << r.output;
-    r = runApp("hif-clean", "-i " + root_ + "/scans.rawlog -o " + d + "/plain -q --no-png");
+    r = clean(root_ + "/scans.rawlog", d + "/plain", noPicture);
     ASSERT_EQ(r.code, 0) << r.output;
     const json with = readJson(d + "/clean/summary.json");
     EXPECT_EQ(with["points_kept"], readJson(d + "/plain/summary.json")["points_kept"]);
@@ -1147,8 +1197,12 @@ TEST(HifClean, ReadsSensoryFramesAnd2DAnd3DAndVelodyneScansAndWritesThemBack)
     {
         SCOPED_TRACE(kind);
         const std::string out = d + "/" + kind;
-        auto r = runApp("hif-clean", "-i " + d + "/" + kind + ".rawlog -o " + out +
-                                         " -q --no-png --rawlog-out " + out + ".clean.rawlog");
+        auto r = clean(d + "/" + kind + ".rawlog", out,
+                       [&](Options& o)
+                       {
+                           o.picture = false;
+                           o.rawlog_out = out + ".clean.rawlog";
+                       });
         ASSERT_EQ(r.code, 0) << r.output;
         const json s = readJson(out + "/summary.json");
         EXPECT_EQ(s["scans"], 5);
@@ -1197,8 +1251,12 @@ TEST(HifSyntheticKitti, EachSensorScansWithItsOwnBeams)
     {
         SCOPED_TRACE(c.sensor);
         const std::string seq = work.path() + "/" + c.sensor;
-        const auto r = runApp("hif-synthetic-kitti",
-                              "-o " + seq + " -n 2 --scene walkers --sensor " + c.sensor);
+        const auto r = synthesize(seq, 2,
+                                  [&](hif::jobs::SyntheticKittiOptions& o)
+                                  {
+                                      o.scene = "walkers";
+                                      o.sensor = c.sensor;
+                                  });
         ASSERT_EQ(r.code, 0) << r.output;
         const hif::io::KittiSequence s(seq);
         std::vector<hif::io::Cloud> scans{s.readScan(0), s.readScan(1)};
@@ -1264,10 +1322,14 @@ TEST(Sensors, EachSensorsClipIsCleanedWithTheDefaults)
         {
             SCOPED_TRACE(f.sensor + " " + scene);
             const std::string seq = work.path() + "/" + f.sensor + "_" + scene;
-            auto r = runApp("hif-synthetic-kitti", "-o " + seq + " -n 10 --seed 1 --scene " +
-                                                       scene + " --sensor " + f.sensor);
+            auto r = synthesize(seq, 10,
+                                [&](hif::jobs::SyntheticKittiOptions& o)
+                                {
+                                    o.scene = scene;
+                                    o.sensor = f.sensor;
+                                });
             ASSERT_EQ(r.code, 0) << r.output;
-            const json s = cleanAndScoreInput(seq, seq + "/labels", seq + "/out", "--no-png");
+            const json s = cleanAndScoreInput(seq, seq + "/labels", seq + "/out", noPicture);
             const json& total = s["total"];
             if (scene == "street")
             {
@@ -1292,8 +1354,12 @@ TEST(Sensors, EachSensorsClipIsCleanedWithTheDefaults)
     const std::string tail = "\nsensor_horizontal_resolution_deg=0.2\n";
     std::ofstream(seq + "/vlp16.ini") << text.str() << vlp16 << tail;
     std::ofstream(seq + "/hdl64.ini") << text.str() << hdl64 << tail;
-    auto r = runApp("hif-clean",
-                    "-i " + seq + " -o " + seq + "/given --no-png -c " + seq + "/vlp16.ini");
+    auto r = clean(seq, seq + "/given",
+                   [&](Options& o)
+                   {
+                       o.picture = false;
+                       o.config = seq + "/vlp16.ini";
+                   });
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("sensor : 16 beams from -15.00 to 15.00 deg, 2.000 deg apart"),
               std::string::npos)
@@ -1304,8 +1370,12 @@ TEST(Sensors, EachSensorsClipIsCleanedWithTheDefaults)
     EXPECT_TRUE(g["given"].get<bool>());
     EXPECT_EQ(g["beams"].get<int>(), 16);
     EXPECT_EQ(g["scans_checked"].get<int>(), 1);  // the first scan
-    r = runApp("hif-clean",
-               "-i " + seq + " -o " + seq + "/wrong --no-png -c " + seq + "/hdl64.ini");
+    r = clean(seq, seq + "/wrong",
+              [&](Options& o)
+              {
+                  o.picture = false;
+                  o.config = seq + "/hdl64.ini";
+              });
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("warning: scan 0 does not look like the sensor given in the config "
                             "(is it this LiDAR's?): 64 beams expected, the scan has 16"),

@@ -39,7 +39,6 @@ public:
 
 TEST_F(BadInput, IniMistakesNameTheKeySectionAndFile)
 {
-    const std::string in = "-i " + root_ + "/all.rawlog -o " + root_ + "/x -q -c ";
     const std::string file = root_ + "/bad.ini";
     struct Case
     {
@@ -66,7 +65,10 @@ TEST_F(BadInput, IniMistakesNameTheKeySectionAndFile)
               "in (0.5, 1))"}})
     {
         SCOPED_TRACE(c.to);
-        expectError(runApp("hif-clean", in + ini(c.from, c.to)), c.message);
+        const std::string config = ini(c.from, c.to);
+        expectError(hif::test::clean(root_ + "/all.rawlog", root_ + "/x",
+                                     [&](hif::jobs::CleanOptions& o) { o.config = config; }),
+                    c.message);
     }
 }
 

@@ -18,13 +18,13 @@
 #include "hif/io/CloudFiles.h"
 #include "hif/io/KittiSequence.h"
 #include "hif/io/Labels.h"
+#include "job_runner.h"
 #include "kitti_fixture.h"
 
 namespace fs = std::filesystem;
 using hif::test::expectError;
 using hif::test::readJson;
 using hif::test::Result;
-using hif::test::runApp;
 using hif::test::WorkDir;
 using hif::test::workDir;
 
@@ -75,9 +75,18 @@ std::vector<uint32_t> predictions(const std::string& dir, std::size_t scans)
     return all;
 }
 
-Result clean(const std::string& input, const std::string& out, const std::string& flags = "")
+/** The cleaning of `input` into `out` (in process, no picture), at the poses of `poses` if
+ *  given. */
+Result clean(const std::string& input, const std::string& out, const std::string& poses = "",
+             bool scan_numbers = false)
 {
-    return runApp("hif-clean", "-i " + input + " -o " + out + " -q --no-png " + flags);
+    return hif::test::clean(input, out,
+                            [&](hif::jobs::CleanOptions& o)
+                            {
+                                o.picture = false;
+                                o.poses = poses;
+                                o.scan_numbers = scan_numbers;
+                            });
 }
 }  // namespace
 
@@ -120,7 +129,7 @@ TEST(SlamFolders, CloudsWithTheirPosesGiveTheKittiFoldersClasses)
     EXPECT_EQ(predictions(w + "/pcd_out", seq.size()), reference);
     EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
 
-    r = clean(w + "/ply_scans", w + "/ply_out", "--poses " + w + "/ply_poses_kitti.txt");
+    r = clean(w + "/ply_scans", w + "/ply_out", w + "/ply_poses_kitti.txt");
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("at the poses of " + w + "/ply_poses_kitti.txt"), std::string::npos)
         << r.output;
@@ -128,7 +137,7 @@ TEST(SlamFolders, CloudsWithTheirPosesGiveTheKittiFoldersClasses)
 
     // A quaternion printed to 17 digits gives the rotation to about 1e-16: a point on a cell's
     // border may change sides, hardly more.
-    r = clean(w + "/pcd_scans", w + "/tum_out", "--poses " + w + "/poses_tum.txt --scan-numbers");
+    r = clean(w + "/pcd_scans", w + "/tum_out", w + "/poses_tum.txt", true);
     ASSERT_EQ(r.code, 0) << r.output;
     const auto tum = predictions(w + "/tum_out", seq.size());
     ASSERT_EQ(tum.size(), reference.size());
@@ -181,7 +190,7 @@ TEST(SlamFolders, PosesThatDoNotBelongToTheScansAreWarnedAboutAtTheStart)
         SCOPED_TRACE(name);
         const std::string file = w + "/" + name + "_poses.txt";
         writeKittiPoses(poses, file);
-        const Result r = clean(w + "/scans", w + "/" + name + "_out", "--poses " + file);
+        const Result r = clean(w + "/scans", w + "/" + name + "_out", file);
         ASSERT_EQ(r.code, 0) << r.output;
         EXPECT_NE(r.output.find("warning: the poses may not belong to the scans"),
                   std::string::npos)
@@ -217,33 +226,27 @@ TEST(SlamFolders, WrongFoldersAndTrajectoriesAreNamed)
     // A folder of clouds without poses.
     expectError(clean(w + "/scans", w + "/o2"), "neither velodyne/, pcd/ nor poses.txt");
     // Fewer poses than clouds.
-    expectError(clean(w + "/scans", w + "/o3", "--poses " + write("two.txt", id + id)),
+    expectError(clean(w + "/scans", w + "/o3", write("two.txt", id + id)),
                 "has 2 poses for the 3 scans");
     // Neither format.
-    expectError(clean(w + "/scans", w + "/o4", "--poses " + write("seven.txt", "1 2 3 4 5 6 7\n")),
+    expectError(clean(w + "/scans", w + "/o4", write("seven.txt", "1 2 3 4 5 6 7\n")),
                 "line 1 has 7 numbers: neither a KITTI pose (12: a 3x4 matrix) nor a TUM pose");
     // A TUM quaternion that is not a rotation, and times going back.
-    expectError(
-        clean(
-            w + "/scans", w + "/o5",
-            "--poses " + write("q.txt", "0 0 0 0 0 0 0 1\n0.1 0 0 0 0 0 0 2\n0.2 0 0 0 0 0 0 1\n")),
-        "line 2: the quaternion (qx qy qz qw) has norm 2");
-    expectError(
-        clean(
-            w + "/scans", w + "/o6",
-            "--poses " + write("t.txt", "0 0 0 0 0 0 0 1\n0.2 0 0 0 0 0 0 1\n0.1 0 0 0 0 0 0 1\n")),
-        "line 3: time 0.1 does not come after");
+    expectError(clean(w + "/scans", w + "/o5",
+                      write("q.txt", "0 0 0 0 0 0 0 1\n0.1 0 0 0 0 0 0 2\n0.2 0 0 0 0 0 0 1\n")),
+                "line 2: the quaternion (qx qy qz qw) has norm 2");
+    expectError(clean(w + "/scans", w + "/o6",
+                      write("t.txt", "0 0 0 0 0 0 0 1\n0.2 0 0 0 0 0 0 1\n0.1 0 0 0 0 0 0 1\n")),
+                "line 3: time 0.1 does not come after");
     // A line of another length in the middle.
-    expectError(clean(w + "/scans", w + "/o7",
-                      "--poses " + write("mixed.txt", id + "0 0 0 0 0 0 0 1\n" + id)),
+    expectError(clean(w + "/scans", w + "/o7", write("mixed.txt", id + "0 0 0 0 0 0 0 1\n" + id)),
                 "line 2 has 8 numbers where the lines before have 12");
     // --poses with a KITTI folder, and .pcd beside .ply.
     fs::create_directories(w + "/kitti/velodyne");
-    expectError(clean(w + "/kitti", w + "/o8", "--poses " + write("three.txt", id + id + id)),
+    expectError(clean(w + "/kitti", w + "/o8", write("three.txt", id + id + id)),
                 "--poses is for a folder of clouds");
     fs::copy_file(w + "/scans/000000.pcd", w + "/scans/000003.ply");
-    expectError(clean(w + "/scans", w + "/o9", "--poses " + w + "/three.txt"),
-                "holds both .pcd and .ply scans");
+    expectError(clean(w + "/scans", w + "/o9", w + "/three.txt"), "holds both .pcd and .ply scans");
     fs::remove(w + "/scans/000003.ply");
     // A cloud that says it is in the world frame.
     {
@@ -254,7 +257,7 @@ TEST(SlamFolders, WrongFoldersAndTrajectoriesAreNamed)
         c.add(5.0, 1.0, -1.0, 1.0f);
         c.close();
     }
-    expectError(clean(w + "/scans", w + "/o10", "--poses " + w + "/three.txt"),
+    expectError(clean(w + "/scans", w + "/o10", w + "/three.txt"),
                 "000002.pcd' has a VIEWPOINT other than the identity");
     // Nothing was written for any of them.
     for (int k = 1; k <= 10; ++k) EXPECT_FALSE(fs::exists(w + "/o" + std::to_string(k))) << k;

@@ -17,11 +17,12 @@
 
 #include "app_runner.h"
 #include "hif/io/VoxelMerger.h"
+#include "job_runner.h"
 
 namespace fs = std::filesystem;
 using hif::test::expectError;
 using hif::test::readJson;
-using hif::test::runApp;
+using Options = hif::jobs::CleanOptions;
 using hif::test::workDir;
 using json = nlohmann::json;
 
@@ -98,12 +99,17 @@ TEST(VoxelMap, HoldsOnePointPerVoxelOfTheKeptPointsWithinItsMemory)
 {
     const auto dir = workDir("voxel_map");
     const std::string d = dir.path();
-    auto r = runApp("hif-synthetic-kitti", "-o " + d + "/seq --scans 40");
+    auto r = hif::test::synthesize(d + "/seq", 40);
     ASSERT_EQ(r.code, 0) << r.output;
     // 1 MiB for the voxels: most of the map waits in run files.
-    r = runApp("hif-clean", "-i " + d + "/seq -o " + d +
-                                "/small -q --no-png --classes-ply "
-                                "--voxel 0.237 --voxel-memory 1");
+    r = hif::test::clean(d + "/seq", d + "/small",
+                         [](Options& o)
+                         {
+                             o.picture = false;
+                             o.classes_ply = true;
+                             o.voxel = 0.237;
+                             o.voxel_memory = 1;
+                         });
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("voxels of 0.237 m from the"), std::string::npos) << r.output;
     const json s = readJson(d + "/small/summary.json");
@@ -166,7 +172,12 @@ TEST(VoxelMap, HoldsOnePointPerVoxelOfTheKeptPointsWithinItsMemory)
     EXPECT_LE(std::abs(double(want.size()) - double(got.size())), 1e-4 * double(want.size()));
 
     // With the default memory: no run file, the same map.
-    r = runApp("hif-clean", "-i " + d + "/seq -o " + d + "/large -q --no-png --voxel 0.237");
+    r = hif::test::clean(d + "/seq", d + "/large",
+                         [](Options& o)
+                         {
+                             o.picture = false;
+                             o.voxel = 0.237;
+                         });
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_EQ(readJson(d + "/large/summary.json")["voxel_map"]["run_files"], 0);
     const Ply large = readPly(d + "/large/static_map.ply");
@@ -175,7 +186,8 @@ TEST(VoxelMap, HoldsOnePointPerVoxelOfTheKeptPointsWithinItsMemory)
         for (std::size_t c = 0; c < 5; ++c)
             ASSERT_NEAR(large.rows[k][c], map.rows[k][c], 1e-4) << "point " << k;
 
-    expectError(runApp("hif-clean", "-i " + d + "/seq -o " + d + "/bad -q --voxel 0"), "--voxel 0");
-    expectError(runApp("hif-clean", "-i " + d + "/seq -o " + d + "/bad -q --voxel-memory 8"),
+    expectError(hif::test::clean(d + "/seq", d + "/bad", [](Options& o) { o.voxel = 0; }),
+                "--voxel 0");
+    expectError(hif::test::clean(d + "/seq", d + "/bad", [](Options& o) { o.voxel_memory = 8; }),
                 "--voxel-memory goes with --voxel");
 }

@@ -26,8 +26,8 @@
 #include <exception>
 
 #include "FuzzFiles.h"
-#include "ScanSource.h"
 #include "hif/CHeightIntervalMap.h"
+#include "hif/apps/ScanSource.h"
 
 namespace
 {

@@ -14,9 +14,9 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "ScanSource.h"
 #include "hif/apps/Cli.h"
 #include "hif/apps/FrameComment.h"
+#include "hif/apps/ScanSource.h"
 
 namespace hif::apps
 {

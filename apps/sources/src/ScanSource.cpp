@@ -3,7 +3,7 @@
  * @file   ScanSource.cpp
  * @brief  Which source reads a path, and the scans of a sensory frame.
  */
-#include "ScanSource.h"
+#include "hif/apps/ScanSource.h"
 
 #include <mrpt/io/lazy_load_path.h>
 #include <mrpt/maps/CPointsMapXYZI.h>

@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "ScanSource.h"
+#include "hif/apps/ScanSource.h"
 
 namespace hif::apps
 {

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "RawlogOut.h"
-#include "ScanSource.h"
 #include "hif/CHeightIntervalMap.h"
 #include "hif/apps/Cli.h"
+#include "hif/apps/ScanSource.h"
 #include "hif/apps/TopView.h"
 #include "hif/io/CloudFiles.h"
 #include "hif/io/VoxelMerger.h"

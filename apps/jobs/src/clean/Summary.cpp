@@ -114,39 +114,37 @@ void writeSummary(const std::string& file, const SummaryInfo& info,
     if (!f) throw std::runtime_error("Error writing to target file '" + file + "'");
 }
 
-void printReport(const std::string& tag, const std::string& out_dir, const std::string& format,
-                 const std::string& dm_output, bool online, const hif::CHeightIntervalMap& map,
-                 const Outputs& out, const Timings& t, const std::vector<std::string>& extra)
+void printReport(std::ostream& log, const std::string& tag, const std::string& out_dir,
+                 const std::string& format, const std::string& dm_output, bool online,
+                 const hif::CHeightIntervalMap& map, const Outputs& out, const Timings& t,
+                 const std::vector<std::string>& extra)
 {
     const auto per_scan = hif::apps::timeStats(t.scan_ms);
     const auto cls = hif::apps::timeStats(out.classify_ms);
-    std::cout << std::fixed << std::setprecision(2) << tag << " scans " << t.scans << ", points "
-              << out.points_in << ": kept " << out.points_kept << ", removed " << out.points_removed
-              << " ("
-              << 100.0 * double(out.points_removed) /
-                     double(std::max<std::size_t>(1, out.points_in))
-              << "%)"
-              << (out.points_invalid ? ", invalid " + std::to_string(out.points_invalid) : "")
-              << (out.points_near ? ", nearer than min_range " + std::to_string(out.points_near)
-                                  : "")
-              << (out.points_seen_through
-                      ? "; the free-space test removed " + std::to_string(out.points_seen_through)
-                      : "")
-              << "\n"
-              << tag << " map: " << map.pillarCount() << " pillars, " << map.intervalCount()
-              << " intervals, " << double(map.grid().memoryBytes()) / (1024.0 * 1024.0) << " MiB\n"
-              << tag << " ms per scan (" << (online ? "insert+classify" : "insert") << "): median "
-              << per_scan.median << ", p90 " << per_scan.p90 << ", max " << per_scan.max
-              << "; classify median " << cls.median << "\n"
-              << tag << " total " << t.total_s << " s, peak memory " << hif::apps::peakRssMiB()
-              << " MiB\n";
+    log << std::fixed << std::setprecision(2) << tag << " scans " << t.scans << ", points "
+        << out.points_in << ": kept " << out.points_kept << ", removed " << out.points_removed
+        << " ("
+        << 100.0 * double(out.points_removed) / double(std::max<std::size_t>(1, out.points_in))
+        << "%)" << (out.points_invalid ? ", invalid " + std::to_string(out.points_invalid) : "")
+        << (out.points_near ? ", nearer than min_range " + std::to_string(out.points_near) : "")
+        << (out.points_seen_through
+                ? "; the free-space test removed " + std::to_string(out.points_seen_through)
+                : "")
+        << "\n"
+        << tag << " map: " << map.pillarCount() << " pillars, " << map.intervalCount()
+        << " intervals, " << double(map.grid().memoryBytes()) / (1024.0 * 1024.0) << " MiB\n"
+        << tag << " ms per scan (" << (online ? "insert+classify" : "insert") << "): median "
+        << per_scan.median << ", p90 " << per_scan.p90 << ", max " << per_scan.max
+        << "; classify median " << cls.median << "\n"
+        << tag << " total " << t.total_s << " s, peak memory " << hif::apps::peakRssMiB()
+        << " MiB\n";
     if (const auto& v = out.voxelMap())
-        std::cout << tag << " static_map: " << v->points << " voxels of " << std::defaultfloat
-                  << std::setprecision(6) << v->voxel << std::fixed << std::setprecision(2)
-                  << " m from the " << v->merged << " kept points\n";
-    std::cout << tag << " wrote " << out_dir << "/{static_map,removed}."
-              << (format == "both" ? "{ply,pcd}" : format)
-              << (out.drawsPicture() ? ", map.png" : "") << ", predictions/, map.hifmap, ";
-    for (const std::string& f : extra) std::cout << f << ", ";
-    std::cout << "summary.json" << (dm_output.empty() ? "" : " and " + dm_output) << "\n";
+        log << tag << " static_map: " << v->points << " voxels of " << std::defaultfloat
+            << std::setprecision(6) << v->voxel << std::fixed << std::setprecision(2)
+            << " m from the " << v->merged << " kept points\n";
+    log << tag << " wrote " << out_dir << "/{static_map,removed}."
+        << (format == "both" ? "{ply,pcd}" : format) << (out.drawsPicture() ? ", map.png" : "")
+        << ", predictions/, map.hifmap, ";
+    for (const std::string& f : extra) log << f << ", ";
+    log << "summary.json" << (dm_output.empty() ? "" : " and " + dm_output) << "\n";
 }

@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "NumberedFiles.h"
-#include "ScanSource.h"
+#include "hif/apps/ScanSource.h"
 #include "hif/io/CloudFiles.h"
 #include "hif/io/KittiSequence.h"
 #include "hif/io/Trajectory.h"

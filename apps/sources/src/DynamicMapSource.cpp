@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "NumberedFiles.h"
-#include "ScanSource.h"
+#include "hif/apps/ScanSource.h"
 #include "hif/io/CloudFiles.h"
 
 namespace fs = std::filesystem;

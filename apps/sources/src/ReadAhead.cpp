@@ -11,7 +11,7 @@
 #include <thread>
 #include <utility>
 
-#include "ScanSource.h"
+#include "hif/apps/ScanSource.h"
 
 namespace hif::apps
 {

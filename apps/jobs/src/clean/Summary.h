@@ -6,6 +6,7 @@
 #pragma once
 
 #include <optional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,7 @@ void writeSummary(const std::string& file, const SummaryInfo& info,
 
 /** The run's last lines: counts, map, times, and what was written (`extra`: the files asked
  *  for besides the usual ones, such as classes.ply). */
-void printReport(const std::string& tag, const std::string& out_dir, const std::string& format,
-                 const std::string& dm_output, bool online, const hif::CHeightIntervalMap& map,
-                 const Outputs& out, const Timings& t, const std::vector<std::string>& extra);
+void printReport(std::ostream& log, const std::string& tag, const std::string& out_dir,
+                 const std::string& format, const std::string& dm_output, bool online,
+                 const hif::CHeightIntervalMap& map, const Outputs& out, const Timings& t,
+                 const std::vector<std::string>& extra);

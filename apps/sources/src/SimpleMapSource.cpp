@@ -7,7 +7,7 @@
 
 #include <stdexcept>
 
-#include "ScanSource.h"
+#include "hif/apps/ScanSource.h"
 
 namespace hif::apps
 {

@@ -4,7 +4,7 @@
  * @brief  Scans of a KITTI odometry sequence folder (SemanticKITTI layout, as kitti2rawlog
  *         reads it), without a conversion: velodyne/NNNNNN.bin at the poses of poses.txt.
  */
-#include "ScanSource.h"
+#include "hif/apps/ScanSource.h"
 #include "hif/io/KittiSequence.h"
 
 namespace hif::apps

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "ScanSource.h"
+#include "hif/apps/ScanSource.h"
 
 /** Writes, per scan (observations format): its "kitti frame N" comment when it has a number, a
  *  CObservationRobotPose (sensor label GROUND_TRUTH) when it has a pose, and a copy of the

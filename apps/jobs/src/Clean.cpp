@@ -1,0 +1,404 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   Clean.cpp
+ * @brief  A sequence cleaned: set-up (options, input, config, outputs staged), pass 1 (insert;
+ *         online also classify), pass 2 (offline: classify with the free-space test's window),
+ *         then the files, the summary and the report.
+ */
+#include "hif/jobs/Clean.h"
+
+#include <mrpt/config/CConfigFile.h>
+#include <mrpt/maps/CMultiMetricMap.h>
+#include <mrpt/obs/CObservationPointCloud.h>
+
+#include <cmath>
+#include <deque>
+#include <filesystem>
+#include <sstream>
+#include <utility>
+
+#include "clean/Outputs.h"
+#include "clean/PoseCheck.h"
+#include "clean/Summary.h"
+#include "hif/CHeightIntervalMap.h"
+#include "hif/apps/Cli.h"
+#include "hif/apps/Config.h"
+#include "hif/apps/Heap.h"
+#include "hif/apps/RunFiles.h"
+#include "hif/apps/ScanSource.h"
+#include "hif/apps/Staged.h"
+
+namespace fs = std::filesystem;
+
+namespace hif::jobs
+{
+namespace
+{
+const std::string kTag = "[hif-clean]";
+
+/** The shipped configuration for the mode and input: kitti-online.ini online, dynamicmap.ini
+ *  for a DynamicMap folder, else kitti.ini. */
+std::string defaultConfig(bool online, bool dynamicmap)
+{
+    return hif::apps::shippedConfig(online ? "kitti-online.ini"
+                                           : (dynamicmap ? "dynamicmap.ini" : "kitti.ini"));
+}
+
+/** What a run works with: its input, its maps and where its results go. */
+struct Run
+{
+    std::string input, poses, out_dir, cfg_file, section;
+    bool online = false, hold_scans = false, show_progress = true;
+    std::unique_ptr<hif::apps::ScanSource> source;
+    std::string dm_output;  ///< <folder>/hif_output.pcd for a DynamicMap folder, else empty
+    /** The outputs, written aside and put in place when complete. */
+    std::unique_ptr<hif::apps::StagedFolder> staged;
+    std::unique_ptr<hif::apps::StagedFile> staged_dm;
+    std::unique_ptr<hif::apps::StagedFile> staged_rawlog;  ///< --rawlog-out
+    mrpt::maps::CMultiMetricMap maps;
+    hif::CHeightIntervalMap::Ptr hif_map;
+    SensorReport sensor;  ///< the sensor model: where it came from, what contradicted it
+    hif::apps::PoseCheck pose_check;  ///< whether the poses align the first scans
+    bool poses_doubted = false;
+};
+
+/** What hif-clean writes into its output folder (and replaces, with --overwrite). */
+const std::vector<std::string> kOutputNames{
+    "summary.json", "map.hifmap",  "static_map.ply", "static_map.pcd", "removed.ply",
+    "removed.pcd",  "predictions", "map.png",        "map.3Dscene",    "classes.ply"};
+
+/** Checks the command line, opens the input, creates the maps; refuses to replace earlier
+ *  results unless asked, and any output that is an input or another output of the run. */
+void setUp(const CleanOptions& o, Run& run)
+{
+    run.input = o.input;
+    run.out_dir = hif::apps::cleanDir(o.output);
+    run.online = o.online;
+    run.hold_scans = o.hold_scans;
+    run.show_progress = o.show_progress;
+    run.section = o.section;
+    if (run.hold_scans && run.online)
+        throw std::runtime_error("--hold-scans applies to offline mode only (not --online)");
+    if (o.threads) hif::apps::flagInRange(*o.threads, "--threads", 1, 1024);
+
+    run.poses = o.poses;
+    run.source = hif::apps::openScanSource(run.input, {}, true, run.poses);
+    run.cfg_file =
+        o.config ? *o.config : defaultConfig(run.online, run.source->isDynamicMapFolder());
+    hif::apps::checkConfigFile(run.cfg_file);
+    if (run.source->isDynamicMapFolder())
+        run.dm_output = hif::apps::cleanDir(run.input) + "/hif_output.pcd";
+
+    // No output may be an input or another output of this run, with or without --overwrite.
+    hif::apps::RunFiles files;
+    hif::apps::describeInputs(run.input, files, run.poses);
+    files.input(run.cfg_file, "the config");
+    for (const std::string& n : kOutputNames)
+        files.output(run.out_dir + "/" + n, "the " + n + " of -o", n == "predictions");
+    if (!run.dm_output.empty()) files.output(run.dm_output, "the DynamicMap result");
+    if (o.rawlog_out) files.output(*o.rawlog_out, "--rawlog-out");
+
+    // Earlier results are replaced only when asked, and only once the new ones are complete.
+    const bool overwrite = o.overwrite;
+    run.staged = std::make_unique<hif::apps::StagedFolder>(run.out_dir, kOutputNames, overwrite,
+                                                           "--overwrite");
+    if (!run.dm_output.empty())
+        run.staged_dm = std::make_unique<hif::apps::StagedFile>(run.dm_output, overwrite,
+                                                                "the DynamicMap result");
+    if (o.rawlog_out)
+        run.staged_rawlog =
+            std::make_unique<hif::apps::StagedFile>(*o.rawlog_out, overwrite, "--rawlog-out");
+
+    // Maps from the .ini, through MRPT's own machinery.
+    mrpt::config::CConfigFile cfg(run.cfg_file);
+    hif::apps::checkMapCounts(cfg, run.section, run.cfg_file);
+    mrpt::maps::TSetOfMetricMapInitializers inits;
+    inits.loadFromConfigFile(cfg, run.section);
+    run.maps.setListOfMaps(inits);
+    run.hif_map = run.maps.mapByClass<hif::CHeightIntervalMap>();
+    if (!run.hif_map)
+        throw std::runtime_error(
+            "config '" + run.cfg_file + "', section [" + run.section +
+            "] defines no CHeightIntervalMap (set CHeightIntervalMap_count=1)");
+    // Online or offline is the map's: the run follows it.
+    if (run.hif_map->params().online != run.online)
+        throw std::runtime_error(
+            "config '" + run.cfg_file + "' makes an " +
+            (run.online ? "offline map (online=false), but --online classifies each scan as it "
+                          "comes: use an online config (share/hif/config/kitti-online.ini, the "
+                          "default with --online)"
+                        : "online map (online=true), but without --online every scan is "
+                          "inserted before any is classified: add --online, or use an offline "
+                          "config (share/hif/config/kitti.ini, the default)"));
+    if (o.threads)
+    {
+        run.hif_map->insertionOptions.threads = static_cast<uint64_t>(*o.threads);
+        run.hif_map->applyOptions();
+    }
+}
+
+void printHeader(const Run& run, std::ostream& log)
+{
+    log << kTag << " input  : " << run.input
+        << (run.poses.empty() ? "" : " at the poses of " + run.poses) << "\n"
+        << kTag << " config : " << run.cfg_file << " [" << run.section << "], "
+        << run.maps.maps.size() << " map(s)\n"
+        << kTag << " mode   : "
+        << (run.online ? "online (each scan classified with the past only)"
+                       : "offline (all scans inserted, then every point classified)")
+        << "\n"
+        << kTag << " output : " << run.out_dir << "\n";
+    if (const auto& m = run.hif_map->grid().sensorModel())
+        log << kTag << " sensor : " << m->describe() << " (given in the config)\n";
+    for (const std::string& w : run.source->warnings()) log << kTag << " warning: " << w << "\n";
+}
+
+/** Refuses a scan whose pose is not finite (NaN or inf in a rawlog's pose): every point of it
+ *  would be invalid, and the scan silently lost. */
+void checkPose(const Run& run, const hif::apps::Scan& scan, std::size_t k)
+{
+    const auto& p = scan.robot_pose;
+    for (const double v : {p.x(), p.y(), p.z(), p.yaw(), p.pitch(), p.roll()})
+        if (!std::isfinite(v))
+        {
+            std::ostringstream msg;
+            msg << "scan " << k << " of '" << run.input << "' has a pose that is not finite ("
+                << p.asString() << ")";
+            throw std::runtime_error(msg.str());
+        }
+}
+
+/** Refuses a scan with points outside the map's grid (a pose or an origin far off): they could
+ *  be neither kept nor judged. */
+void checkInsideGrid(const Run& run, std::size_t scan)
+{
+    const hif::InsertStats& st = run.hif_map->lastInsertStats();
+    if (st.points_outside_grid == 0) return;
+    const hif::GridGeometry& g = run.hif_map->geometry();
+    std::ostringstream msg;
+    msg << "scan " << scan << " of '" << run.input << "': " << st.points_outside_grid
+        << " of its points lie outside the map's grid (more than 2^31 pillars of " << g.pillar_size
+        << " m, or 2^31 height cells of " << g.height_resolution << " m, from the origin ("
+        << g.origin_x << ", " << g.origin_y
+        << ")): check the scan's pose, or origin_x and origin_y in '" << run.cfg_file << "'";
+    throw std::runtime_error(msg.str());
+}
+
+/** Prints the sensor model when the map estimated it from scan `k`, and a warning when scan
+ *  `k` contradicted it (the first few; all are counted in summary.json). */
+void reportSensor(Run& run, std::size_t k, std::ostream& log)
+{
+    const hif::InsertStats& st = run.hif_map->lastInsertStats();
+    SensorReport& r = run.sensor;
+    if (st.sensor_estimated)
+    {
+        r.estimated_from_scan = k;
+        log << kTag << " sensor : " << run.hif_map->grid().sensorModel()->describe()
+            << " (estimated from scan " << k << ")\n";
+    }
+    if (st.sensor_checked) ++r.checks;
+    if (st.sensor_contradiction.empty()) return;
+    constexpr std::size_t kShown = 3;
+    if (r.contradictions.size() < kShown)
+        log << kTag << " warning: scan " << k << " does not look like the sensor "
+            << (r.estimated_from_scan ? "of scan " + std::to_string(*r.estimated_from_scan) +
+                                            " (are the scans from one LiDAR?)"
+                                      : std::string("given in the config (is it this LiDAR's?)"))
+            << ": " << st.sensor_contradiction << "\n";
+    r.contradictions.push_back("scan " + std::to_string(k) + ": " + st.sensor_contradiction);
+}
+
+/** Points of a scan when its type says so without converting it (a point cloud), else 0. */
+std::size_t pointsOf(const mrpt::obs::CObservation& obs)
+{
+    const auto* pc = dynamic_cast<const mrpt::obs::CObservationPointCloud*>(&obs);
+    return pc && pc->pointcloud ? pc->pointcloud->size() : 0;
+}
+
+/** Pass 1: every scan inserted (and, online, classified right after). Returns the scans held
+ *  for pass 2 with --hold-scans. */
+std::vector<hif::apps::Scan> insertAll(Run& run, Outputs& out, Timings& t, std::ostream& log)
+{
+    std::vector<hif::apps::Scan> held;
+    hif::apps::Progress progress(kTag, run.online ? "inserting+classifying" : "inserting",
+                                 run.source->knownSize(), run.show_progress);
+    hif::apps::Scan scan;
+    while (run.source->next(scan))
+    {
+        scan.obs->load();
+        checkPose(run, scan, t.scans);
+        const auto t0 = Clock::now();
+        run.maps.insertObservation(*scan.obs, scan.robot_pose);
+        const double ms = msSince(t0);
+        checkInsideGrid(run, t.scans);
+        reportSensor(run, t.scans, log);
+        if (!run.pose_check.done())
+            if (const auto doubt = run.pose_check.add(scan))
+            {
+                log << kTag << " warning: " << *doubt << std::endl;
+                run.poses_doubted = true;
+            }
+        t.insert_ms.push_back(ms);
+        t.points += pointsOf(*scan.obs);
+        if (run.online)
+        {
+            out.classifyAndWrite(*run.hif_map, scan, t.scans);
+            t.scan_ms.push_back(ms + out.classify_ms.back());
+        }
+        else
+            t.scan_ms.push_back(ms);
+        if (run.hold_scans)
+            held.push_back(scan);
+        else
+            scan.obs->unload();
+        ++t.scans;
+        progress.update(t.scans);
+    }
+    progress.finish();
+    if (t.scans == 0) throw std::runtime_error("input '" + run.input + "' holds no scans");
+    return held;
+}
+
+/** Pass 2 (offline): every point of every scan classified against the final map, and, with
+ *  the free-space test on, by the free_space_window scans on each side of it: the scans are
+ *  read again and given to the map's test in their order, and scan k is classified once scan k
+ *  + free_space_window is in (read ahead and held until then). */
+void classifyAll(Run& run, std::vector<hif::apps::Scan>& held, Outputs& out, std::size_t scans)
+{
+    hif::apps::Progress progress(kTag, "classifying", scans, run.show_progress);
+    const std::size_t w = run.hif_map->params().free_space_window;
+    std::deque<hif::apps::Scan> ahead;  // read, not yet classified
+    std::size_t next = 0;               // the next scan to read
+    if (!run.hold_scans) run.source->rewind();
+    for (std::size_t k = 0; k < scans; ++k)
+    {
+        while (next < scans && next <= k + w)
+        {
+            hif::apps::Scan s;
+            if (run.hold_scans)
+                s = std::move(held[next]);  // released once classified
+            else if (!run.source->next(s))
+                throw std::runtime_error("input '" + run.input + "' held " + std::to_string(scans) +
+                                         " scans when first read, " + std::to_string(next) +
+                                         " now");
+            s.obs->load();
+            if (w > 0) run.hif_map->addToFreeSpaceTest(*s.obs, s.robot_pose);
+            ahead.push_back(std::move(s));
+            ++next;
+        }
+        out.classifyAndWrite(*run.hif_map, ahead.front(), k);
+        if (!run.hold_scans) ahead.front().obs->unload();
+        ahead.pop_front();
+        progress.update(k + 1);
+    }
+    progress.finish();
+}
+
+}  // namespace
+
+CleanResult Clean::run(std::ostream& log) const
+{
+    const CleanOptions& o = options_;
+    const auto t_start = Clock::now();
+    Run run;
+    setUp(o, run);
+    printHeader(run, log);
+
+    const std::string dir = run.staged->path();
+    const std::string& format = o.format;
+    std::vector<std::string> extensions;
+    if (format != "pcd") extensions.push_back(".ply");
+    if (format != "ply") extensions.push_back(".pcd");
+    std::vector<std::string> static_files, removed_files;
+    for (const std::string& ext : extensions)
+    {
+        static_files.push_back(dir + "/static_map" + ext);
+        removed_files.push_back(dir + "/removed" + ext);
+    }
+    std::vector<std::string> voxel_files;
+    if (o.voxel)
+    {
+        const double v = *o.voxel;
+        if (!(v >= 0.001 && v <= 100.0))
+            throw std::runtime_error("--voxel " + std::to_string(v) +
+                                     ": give the voxel's side in metres, from 0.001 to 100");
+        voxel_files = std::exchange(static_files, {});
+    }
+    if (run.staged_dm) static_files.push_back(run.staged_dm->path());  // the benchmark's
+    std::optional<std::size_t> first_frame;
+    if (o.first_frame)
+        first_frame = static_cast<std::size_t>(
+            hif::apps::flagInRange(*o.first_frame, "--first-frame", 0, 999999));
+    Outputs out(dir, first_frame, std::move(static_files), std::move(removed_files));
+    if (o.voxel_memory && voxel_files.empty())
+        throw std::runtime_error("--voxel-memory goes with --voxel");
+    const auto voxel_mib = static_cast<std::size_t>(
+        hif::apps::flagInRange(o.voxel_memory.value_or(64), "--voxel-memory", 1, 1 << 20));
+    if (!voxel_files.empty()) out.mergeKept(*o.voxel, std::move(voxel_files), voxel_mib << 20);
+    if (o.picture) out.drawPicture();
+    if (o.rawlog_compress && !run.staged_rawlog)
+        throw std::runtime_error("--rawlog-compress goes with --rawlog-out");
+    const int level = static_cast<int>(
+        hif::apps::flagInRange(o.rawlog_compress.value_or(0), "--rawlog-compress", 0, 9));
+    if (run.staged_rawlog) out.writeRawlog(run.staged_rawlog->path(), *o.rawlog_out, level);
+    if (o.classes_ply) out.writeClasses(dir + "/classes.ply");
+    if (o.scene) out.collectRemoved();
+    if (o.scan_numbers) out.writeScanNumbers();
+    Timings t;
+    t.setup_s = msSince(t_start) / 1000.0;
+    auto t_pass = Clock::now();
+    std::vector<hif::apps::Scan> held = insertAll(run, out, t, log);
+    t.insert_pass_s = msSince(t_pass) / 1000.0;
+    if (!run.online)
+    {
+        out.expectKept(t.points);  // most points are kept
+        out.pictureCovers(*run.hif_map);
+        t_pass = Clock::now();
+        classifyAll(run, held, out, t.scans);
+        t.classify_pass_s = msSince(t_pass) / 1000.0;
+    }
+
+    const auto t_files = Clock::now();
+    hif::apps::returnFreeHeap();  // the scans' buffers, kept for reuse, go back now
+    out.close();
+    const std::size_t rawlog_scans = out.closeRawlog();
+    run.hif_map->saveToFile(dir + "/map.hifmap");
+    std::ostringstream title;
+    title << "hif-clean " << fs::path(run.input).filename().string() << ": " << t.scans
+          << " scans, " << out.points_kept << " points kept, " << out.points_removed
+          << " removed (red)";
+    const auto picture = out.writePicture(dir + "/map.png", title.str());
+    if (o.scene) out.writeScene(*run.hif_map, dir + "/map.3Dscene");
+    t.finish_s = msSince(t_files) / 1000.0;
+    t.files_ms = msSince(t_files) + out.write_ms_total;
+    t.total_s = msSince(t_start) / 1000.0;
+
+    SummaryInfo info{
+        run.input, run.cfg_file, run.online,      run.hold_scans,   run.source->skippedObjects(),
+        picture,   run.sensor,   &run.pose_check, run.poses_doubted};
+    writeSummary(dir + "/summary.json", info, *run.hif_map, out, t);
+    run.staged->commit();
+    if (run.staged_dm) run.staged_dm->commit();
+    if (run.staged_rawlog)
+    {
+        run.staged_rawlog->commit();
+        log << kTag << " wrote " << *o.rawlog_out << ": " << rawlog_scans
+            << " scans without their dynamic points" << std::endl;
+    }
+    std::vector<std::string> extra;
+    if (o.classes_ply) extra.emplace_back("classes.ply");
+    if (o.scene) extra.emplace_back("map.3Dscene");
+    printReport(log, kTag, run.out_dir, format, run.dm_output, run.online, *run.hif_map, out, t,
+                extra);
+    if (out.drawsPicture() && !picture)
+        log << kTag << " map.png not drawn: no point could be drawn\n";
+    if (picture && picture->points_outside > 0)
+        log << kTag << " map.png shows the map's main area: " << picture->points_outside << " of "
+            << picture->points
+            << " points lie apart from it (more than 100 m of empty ground away: stray "
+               "points, or poses far off) and are not drawn\n";
+    return {run.out_dir,        t.scans,           out.points_in, out.points_kept,
+            out.points_removed, out.points_invalid};
+}
+
+}  // namespace hif::jobs

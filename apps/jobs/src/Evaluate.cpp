@@ -1,0 +1,415 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   Evaluate.cpp
+ * @brief  Predictions scored against SemanticKITTI labels, scan by scan, per moving class and
+ *         per range band; the tables on the log, the scores in JSON, the outcomes drawn.
+ */
+#include "hif/jobs/Evaluate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <tuple>
+
+#include "hif/apps/Cli.h"
+#include "hif/apps/RunFiles.h"
+#include "hif/apps/Staged.h"
+#include "hif/apps/TopView.h"
+#include "hif/io/CloudFiles.h"
+#include "hif/io/FileError.h"
+#include "hif/io/KittiSequence.h"
+#include "hif/io/Labels.h"
+
+namespace fs = std::filesystem;
+
+namespace hif::jobs
+{
+namespace
+{
+/** printf's formatting, onto `log`. */
+__attribute__((format(printf, 2, 3))) void say(std::ostream& log, const char* format, ...)
+{
+    char line[1024];
+    va_list args;
+    va_start(args, format);
+    std::vsnprintf(line, sizeof line, format, args);
+    va_end(args);
+    log << line;
+}
+
+nlohmann::ordered_json toJson(const hif::io::Scores& s)
+{
+    nlohmann::ordered_json j;
+    j["SA"] = s.sa();
+    j["DA"] = s.da();
+    j["AA"] = s.aa();
+    j["HA"] = s.ha();
+    j["static_total"] = s.static_total;
+    j["static_kept"] = s.static_kept;
+    j["dynamic_total"] = s.dynamic_total;
+    j["dynamic_removed"] = s.dynamic_removed;
+    j["ignored"] = s.ignored;
+    return j;
+}
+
+/** Ranges from the sensor of the points of scan `stem` (NaN when `dir` is empty). */
+std::vector<double> ranges(const std::string& dir, const std::string& stem, std::size_t n)
+{
+    if (dir.empty()) return std::vector<double>(n, std::nan(""));
+    std::vector<double> r;
+    const fs::path bin = fs::path(dir) / (stem + ".bin"), pcd = fs::path(dir) / (stem + ".pcd");
+    if (fs::exists(bin))
+    {
+        const hif::io::Cloud c = hif::io::readKittiBin(bin.string());
+        if (c.size() != n)
+            hif::io::throwFileError(bin.string(), "does not hold the " + std::to_string(n) +
+                                                      " points of its label file");
+        for (std::size_t i = 0; i < n; ++i)
+            r.push_back(std::sqrt(double(c.x[i]) * c.x[i] + double(c.y[i]) * c.y[i] +
+                                  double(c.z[i]) * c.z[i]));
+        return r;
+    }
+    if (fs::exists(pcd))
+    {
+        const hif::io::PcdCloud c = hif::io::readPcd(pcd.string());
+        if (c.size() != n)
+            hif::io::throwFileError(pcd.string(), "does not hold the " + std::to_string(n) +
+                                                      " points of its label file");
+        if (!c.has_viewpoint)
+            hif::io::throwFileError(pcd.string(),
+                                    "has no VIEWPOINT line (the sensor pose), so its points' "
+                                    "ranges are unknown");
+        const Eigen::Vector3d s = c.viewpoint.translation();
+        for (std::size_t i = 0; i < n; ++i) r.push_back((c.point(i) - s).norm());
+        return r;
+    }
+    hif::io::throwFileError(dir, "has neither " + stem + ".bin nor " + stem + ".pcd");
+}
+
+/** World points of a scan, in double (UTM coordinates keep their millimetres). */
+struct WorldPoints
+{
+    std::vector<double> x, y, z;
+    [[nodiscard]] std::size_t size() const { return x.size(); }
+};
+
+/** The points of scan `stem` of `dir` in the world frame: a KITTI velodyne folder's at the
+ *  poses of its sequence (`seq`), a DynamicMap pcd folder's as they are. */
+WorldPoints worldPoints(const std::string& dir, const std::string& stem,
+                        const std::optional<hif::io::KittiSequence>& seq)
+{
+    WorldPoints w;
+    const auto put = [&w](const Eigen::Vector3d& p)
+    {
+        w.x.push_back(p.x());
+        w.y.push_back(p.y());
+        w.z.push_back(p.z());
+    };
+    const fs::path pcd = fs::path(dir) / (stem + ".pcd");
+    if (fs::exists(pcd))
+    {
+        const hif::io::PcdCloud c = hif::io::readPcd(pcd.string());
+        for (std::size_t i = 0; i < c.size(); ++i) put(c.point(i));
+        return w;
+    }
+    if (!seq)
+        hif::io::throwFileError(dir, "has no " + stem +
+                                         ".pcd, and is not the velodyne/ folder of "
+                                         "a KITTI sequence (for its poses)");
+    const std::size_t i = std::stoul(stem);
+    const hif::io::Cloud c = seq->readScan(i);
+    const Eigen::Isometry3d& T = seq->pose(i);
+    for (std::size_t k = 0; k < c.size(); ++k) put(T * Eigen::Vector3d(c.x[k], c.y[k], c.z[k]));
+    return w;
+}
+
+/** Prediction values that are neither static (9) nor moving (251-259): scored as static, and
+ *  reported (another tool's labels, a semantic class, 0 for "not judged"). */
+struct OtherValues
+{
+    std::size_t points = 0, files = 0;
+    std::string example;  ///< the first one seen: "<value> in <file>"
+};
+
+void printRow(std::ostream& log, const char* name, const hif::io::Scores& s)
+{
+    say(log, "%-14s %9zu %9zu %7.2f %7.2f %7.2f %7.2f\n", name, s.static_total, s.dynamic_total,
+        s.sa(), s.da(), s.aa(), s.ha());
+}
+
+}  // namespace
+
+EvaluateResult Evaluate::run(std::ostream& log) const
+{
+    const EvaluateOptions& o = options_;
+    const std::string pred_dir = hif::apps::cleanDir(o.predictions);
+    const std::string label_dir = hif::apps::cleanDir(o.labels);
+    const std::string scan_dir = hif::apps::cleanDir(o.scans);
+    for (const auto& [dir, what] :
+         {std::pair{pred_dir, "predictions"}, {label_dir, "labels"}, {scan_dir, "scans"}})
+        if (!dir.empty() && !fs::is_directory(dir))
+            throw std::runtime_error(std::string(what) + " folder '" + dir +
+                                     (fs::exists(dir) ? "' is not a folder" : "' does not exist"));
+    std::error_code same_ec;
+    if (fs::equivalent(pred_dir, label_dir, same_ec))
+        throw std::runtime_error("--labels and --predictions are the same folder '" + label_dir +
+                                 "': the labels would be scored against themselves");
+    const double ego_radius = o.ego_radius;
+    if (!(ego_radius >= 0.0))
+        throw std::runtime_error("--ego-radius must be >= 0, not " + std::to_string(ego_radius));
+    if ((o.png || o.classes_ply) && scan_dir.empty())
+        throw std::runtime_error("--png and --classes-ply need --scans (where the points are)");
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(pred_dir))
+        if (e.path().extension() == ".label") names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    if (names.empty()) throw std::runtime_error("no .label files in '" + pred_dir + "'");
+
+    // What the run reads, and what it writes: never an input, never replaced unasked.
+    std::optional<hif::io::KittiSequence> kitti;  // for the poses of velodyne/ scans
+    hif::apps::RunFiles files;
+    files.inputFolder(label_dir, ".label", "the ground truth (--labels)");
+    files.inputFolder(pred_dir, ".label", "the predictions (--predictions)");
+    if (!scan_dir.empty())
+    {
+        files.inputFolder(scan_dir, ".bin", "the scans (--scans)");
+        files.inputFolder(scan_dir, ".pcd", "the scans (--scans)");
+        const fs::path seq_dir = fs::path(scan_dir).parent_path();
+        if ((o.png || o.classes_ply) && fs::path(scan_dir).filename() == "velodyne" &&
+            fs::exists(seq_dir / "poses.txt"))
+        {
+            kitti.emplace(seq_dir.string());
+            for (const char* f : {"poses.txt", "calib.txt", "times.txt"})
+                files.input((seq_dir / f).string(), std::string("the sequence's ") + f);
+        }
+    }
+    const bool overwrite = o.overwrite;
+    std::optional<hif::apps::StagedFile> json_file, png_file, ply_file;
+    const std::tuple<const std::optional<std::string>*, std::optional<hif::apps::StagedFile>*,
+                     const char*>
+        written[] = {{&o.json, &json_file, "--json"},
+                     {&o.png, &png_file, "--png"},
+                     {&o.classes_ply, &ply_file, "--classes-ply"}};
+    // All checked against the inputs and each other before the first is staged.
+    for (const auto& [arg, staged, flag] : written)
+        if (*arg) files.output(**arg, flag);
+    for (const auto& [arg, staged, flag] : written)
+        if (*arg) staged->emplace(**arg, overwrite, flag);
+
+    std::optional<hif::apps::TopView> view;
+    std::optional<hif::io::CloudWriter> outcome_cloud;
+    if (png_file) view.emplace();
+    if (ply_file)
+        outcome_cloud.emplace(std::vector<std::string>{ply_file->path()},
+                              hif::io::PointFields::colourOnly());
+    hif::io::Breakdown total;
+    hif::io::Scores with_ego;  ///< the DynamicMap benchmark's way (needs ranges)
+    std::size_t without_truth = 0, scored = 0;
+    OtherValues other;
+    nlohmann::ordered_json scans = nlohmann::ordered_json::array();
+    if (o.per_scan)
+        say(log, "%-14s %9s %9s %7s %7s %7s %7s\n", "scan", "static", "dynamic", "SA", "DA", "AA",
+            "HA");
+    for (const std::string& name : names)
+    {
+        const std::string truth_file = (fs::path(label_dir) / name).string();
+        if (!fs::exists(truth_file))
+        {
+            ++without_truth;
+            continue;
+        }
+        ++scored;
+        const std::string stem = fs::path(name).stem().string();
+        const std::string pred_file = (fs::path(pred_dir) / name).string();
+        const auto truth = hif::io::readLabels(truth_file);
+        const auto pred = hif::io::readLabels(pred_file);
+        if (truth.size() != pred.size())
+            throw std::runtime_error("'" + pred_file + "' has " + std::to_string(pred.size()) +
+                                     " points, '" + truth_file + "' has " +
+                                     std::to_string(truth.size()));
+        std::size_t odd = 0;
+        for (const uint32_t p : pred)
+        {
+            const uint32_t c = p & 0xffffu;
+            if (c == hif::io::kLabelStatic || hif::io::isPredictedMoving(c)) continue;
+            if (other.example.empty())
+                other.example = std::to_string(c) + " in '" + pred_file + "'";
+            ++odd;
+        }
+        other.points += odd;
+        other.files += odd > 0;
+        const std::vector<double> range = ranges(scan_dir, stem, truth.size());
+        hif::io::Breakdown s;
+        for (std::size_t i = 0; i < truth.size(); ++i)
+        {
+            const bool removed = hif::io::isPredictedMoving(pred[i]);
+            s.add(truth[i], removed, range[i]);
+            const bool ego = range[i] < ego_radius;
+            with_ego.add(ego ? 252u : truth[i], removed);
+        }
+        if (view || outcome_cloud)
+        {
+            using V = hif::apps::TopView;
+            const WorldPoints w = worldPoints(scan_dir, stem, kitti);
+            if (w.size() != truth.size())
+                hif::io::throwFileError(scan_dir, stem + " does not hold the " +
+                                                      std::to_string(truth.size()) +
+                                                      " points of its label file");
+            for (std::size_t i = 0; i < w.size(); ++i)
+            {
+                const bool removed = hif::io::isPredictedMoving(pred[i]);
+                const uint32_t t = truth[i] & 0xFFFFu;
+                const bool judged = hif::io::isScored(t), moving = hif::io::isMovingClass(t);
+                const V::Outcome outcome = !judged  ? (removed ? V::kRemovedUnlabelled : V::kKept)
+                                           : moving ? (removed ? V::kRemoved : V::kMissedMoving)
+                                                    : (removed ? V::kWronglyRemoved : V::kKept);
+                if (view) view->add(w.x[i], w.y[i], static_cast<float>(w.z[i]), outcome);
+                if (outcome_cloud && std::isfinite(w.x[i]) && std::isfinite(w.y[i]) &&
+                    std::isfinite(w.z[i]))
+                    outcome_cloud->add(w.x[i], w.y[i], w.z[i], V::kRgb[outcome][0],
+                                       V::kRgb[outcome][1], V::kRgb[outcome][2]);
+            }
+        }
+        total += s;
+        auto js = toJson(s.total);
+        js["scan"] = stem;
+        scans.push_back(js);
+        if (o.per_scan) printRow(log, stem.c_str(), s.total);
+    }
+    if (scored == 0)
+        throw std::runtime_error("none of the " + std::to_string(names.size()) +
+                                 " predictions in '" + pred_dir + "' has a label file in '" +
+                                 label_dir + "'");
+    // Ground truth that no prediction scores: a scan the method left out is not a scan it got
+    // right.
+    std::size_t without_prediction = 0;
+    std::string first_missing;
+    for (const auto& e : fs::directory_iterator(label_dir))
+        if (e.path().extension() == ".label" &&
+            !fs::exists(fs::path(pred_dir) / e.path().filename()))
+        {
+            ++without_prediction;
+            const std::string n = e.path().filename().string();
+            if (first_missing.empty() || n < first_missing) first_missing = n;
+        }
+    if (without_truth > 0)
+        say(log, "[hif-eval] %zu of %zu predictions have no label file in '%s': not scored\n",
+            without_truth, names.size(), label_dir.c_str());
+    if (without_prediction > 0)
+        say(log,
+            "[hif-eval] %zu label files in '%s' have no prediction in '%s' (the first: "
+            "%s): those scans are not scored\n",
+            without_prediction, label_dir.c_str(), pred_dir.c_str(), first_missing.c_str());
+    if (other.points > 0)
+        say(log,
+            "[hif-eval] warning: %zu predicted points in %zu files are neither 9 (static) "
+            "nor 251-259 (moving), e.g. %s: they are scored as static\n",
+            other.points, other.files, other.example.c_str());
+
+    nlohmann::ordered_json classes, bands;
+    say(log, "%-22s %9s %9s %7s\n", "moving class", "dynamic", "removed", "DA");
+    for (const auto& [cls, s] : total.by_moving_class)
+    {
+        const std::string n = hif::io::movingClassName(cls);
+        say(log, "%-22s %9zu %9zu %7.2f\n", n.c_str(), s.dynamic_total, s.dynamic_removed, s.da());
+        classes[n] = {{"DA", s.da()},
+                      {"dynamic_total", s.dynamic_total},
+                      {"dynamic_removed", s.dynamic_removed}};
+    }
+    if (total.has_ranges)
+    {
+        say(log, "%-14s %9s %9s %7s %7s\n", "range (m)", "static", "dynamic", "SA", "DA");
+        for (std::size_t b = 0; b < total.by_range.size(); ++b)
+        {
+            const hif::io::Scores& s = total.by_range[b];
+            const std::string n = hif::io::rangeBandName(b);
+            // A band without static or dynamic points has no score for them: "-", as in the
+            // README's tables (the JSON keeps the convention of Scores: 100).
+            const auto pct = [](std::size_t count, double v)
+            {
+                char text[16];
+                if (count == 0) return std::string("      -");
+                std::snprintf(text, sizeof text, "%7.2f", v);
+                return std::string(text);
+            };
+            say(log, "%-14s %9zu %9zu %s %s\n", n.c_str(), s.static_total, s.dynamic_total,
+                pct(s.static_total, s.sa()).c_str(), pct(s.dynamic_total, s.da()).c_str());
+            auto jb = toJson(s);
+            jb["band"] = n;
+            bands.push_back(jb);
+        }
+        if (ego_radius > 0.0)
+            say(log,
+                "[hif-eval] counting unlabelled points within %.1f m as dynamic (the "
+                "DynamicMap benchmark): SA %.2f  DA %.2f  AA %.2f\n",
+                ego_radius, with_ego.sa(), with_ego.da(), with_ego.aa());
+    }
+    printRow(log, "TOTAL", total.total);
+    say(log, "[hif-eval] %zu scans: SA %.2f  DA %.2f  AA %.2f  HA %.2f\n", scored, total.total.sa(),
+        total.total.da(), total.total.aa(), total.total.ha());
+
+    if (outcome_cloud)
+    {
+        outcome_cloud->close();
+        ply_file->commit();
+        say(log, "[hif-eval] wrote %s (%zu points%s)\n", o.classes_ply->c_str(),
+            outcome_cloud->count(),
+            outcome_cloud->doubleCoordinates() ? ", float64 coordinates" : "");
+    }
+    if (view)
+    {
+        char title[160];
+        std::snprintf(title, sizeof title, "hif-eval: %zu scans, SA %.2f  DA %.2f  AA %.2f", scored,
+                      total.total.sa(), total.total.da(), total.total.aa());
+        if (view->empty())
+            throw std::runtime_error("--png '" + *o.png + "': the scans have no point to draw");
+        const auto pic = view->write(png_file->path(), title, true);
+        png_file->commit();
+        say(log, "[hif-eval] wrote %s (%d x %d)\n", o.png->c_str(), pic.width, pic.height);
+        if (pic.points_outside > 0)
+            say(log,
+                "[hif-eval] %s shows the main area: %zu of %zu points lie apart from it "
+                "(more than 100 m of empty ground away) and are not drawn\n",
+                o.png->c_str(), pic.points_outside, pic.points);
+    }
+    if (json_file)
+    {
+        nlohmann::ordered_json j;
+        j["labels"] = label_dir;
+        j["predictions"] = pred_dir;
+        j["scans_scored"] = scored;
+        j["predictions_without_labels"] = without_truth;
+        j["labels_without_predictions"] = without_prediction;
+        j["predicted_points_neither_static_nor_moving"] = other.points;
+        j["total"] = toJson(total.total);
+        j["per_moving_class"] = classes.is_null() ? nlohmann::ordered_json::object() : classes;
+        if (total.has_ranges)
+        {
+            j["per_range"] = bands;
+            if (ego_radius > 0.0)
+            {
+                j["with_ego_points"] = toJson(with_ego);
+                j["ego_radius"] = ego_radius;
+            }
+        }
+        j["per_scan"] = scans;
+        {
+            std::ofstream f(json_file->path());
+            f << std::setw(2) << j << "\n";
+            f.close();
+            if (!f)
+                throw std::runtime_error("--json '" + *o.json +
+                                         "' could not be written (disk full?)");
+        }
+        json_file->commit();
+    }
+    return {scored, total.total};
+}
+
+}  // namespace hif::jobs

@@ -1,0 +1,144 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   SyntheticKitti.cpp
+ * @brief  A synthetic sequence rendered scan by scan: the scene, the sensor's beams cast into
+ *         it, the points and their labels written in the SemanticKITTI layout.
+ */
+#include "hif/jobs/SyntheticKitti.h"
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include "hif/apps/Cli.h"
+#include "hif/apps/Staged.h"
+#include "hif/io/KittiSequence.h"
+#include "hif/io/Labels.h"
+#include "synthetic/Scene.h"
+#include "synthetic/Sensor.h"
+
+namespace hif::jobs
+{
+namespace
+{
+constexpr double kScanPeriod = 0.1;  // s (10 Hz)
+}  // namespace
+
+using namespace synth;
+
+SyntheticKittiResult SyntheticKitti::run(std::ostream& log) const
+{
+    const SyntheticKittiOptions& o = options_;
+    const std::string tag = "[hif-synthetic-kitti]";
+    const std::string dir = hif::apps::cleanDir(o.output);
+    const auto n = static_cast<std::size_t>(hif::apps::flagInRange(o.scans, "--scans", 1, 999999));
+    const auto seed = static_cast<std::mt19937::result_type>(
+        hif::apps::flagInRange(o.seed, "--seed", 0, 4294967295LL));
+    const std::string& kind = o.scene;
+    if (kind != "street" && kind != "walkers" && kind != "radial" && kind != "cyclists")
+        throw std::runtime_error("--scene '" + kind +
+                                 "' is not street, walkers, radial or cyclists");
+    const double ego_speed = o.ego_speed.value_or(kind == "street" ? 8.0 : 3.0);
+    if (!(ego_speed >= 0.0 && ego_speed <= 60.0))
+        throw std::runtime_error("--ego-speed " + std::to_string(ego_speed) +
+                                 " is not in [0, 60] m/s");
+    const Sensor& sensor = sensorNamed(o.sensor);
+    if (o.groups < 0 || o.groups > 100)
+        throw std::runtime_error("--groups " + std::to_string(o.groups) + " is not in [0, 100]");
+    // Written aside and put in place when complete: a stopped run leaves no half sequence.
+    hif::apps::StagedFolder staged(dir,
+                                   {"velodyne", "labels", "poses.txt", "calib.txt", "times.txt"},
+                                   o.overwrite, "--overwrite");
+    const std::string out = staged.path();
+    hif::apps::makeDirs(out + "/velodyne");
+    hif::apps::makeDirs(out + "/labels");
+
+    std::mt19937 rng(seed);
+    const double length = ego_speed * kScanPeriod * double(n);
+    const double duration = kScanPeriod * double(n);
+    const int groups = static_cast<int>(o.groups);
+    const Scene scene = kind == "street"    ? streetScene(rng, length)
+                        : kind == "walkers" ? walkersScene(rng, length, duration, groups)
+                        : kind == "radial"  ? radialWalkersScene(rng, length, duration, groups)
+                                            : cyclistsScene(rng, length, duration, groups);
+    std::normal_distribution<double> noise(0.0, 0.01);
+
+    // KITTI's LiDAR-to-camera calibration, rounded: camera x = -y, y = -z, z = x.
+    Eigen::Isometry3d Tr = Eigen::Isometry3d::Identity();
+    Tr.linear() << 0, -1, 0, 0, 0, -1, 1, 0, 0;
+    Tr.translation() = Eigen::Vector3d(-0.004, -0.076, -0.272);
+    auto row34 = [](const Eigen::Isometry3d& T)
+    {
+        std::string s;
+        char buf[64];
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 4; ++c)
+            {
+                std::snprintf(buf, sizeof(buf), "%s%.9e", (r || c) ? " " : "", T.matrix()(r, c));
+                s += buf;
+            }
+        return s;
+    };
+    std::ofstream calib(out + "/calib.txt"), poses(out + "/poses.txt"), times(out + "/times.txt");
+    calib << "Tr: " << row34(Tr) << "\n";
+
+    hif::apps::Progress progress(tag, "rendering", n, o.show_progress);
+    std::vector<Eigen::Vector3d> beams;
+    std::size_t total_points = 0, moving_points = 0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+        const double t = double(i) * kScanPeriod;
+        const double ex = ego_speed * t;
+        Eigen::Isometry3d T_world_velo = Eigen::Isometry3d::Identity();
+        T_world_velo.translation() = Eigen::Vector3d(ex, 0, kSlope * ex);
+        // poses.txt holds camera-0 poses: P = Tr * T_world_velo * inv(Tr).
+        poses << row34(Tr * T_world_velo * Tr.inverse()) << "\n";
+        times << t << "\n";
+
+        std::vector<float> pts;
+        std::vector<uint32_t> labels;
+        const Eigen::Vector3d origin = T_world_velo.translation();
+        sensor.directions(t, kScanPeriod, beams);
+        for (const Eigen::Vector3d& d : beams)
+        {
+            uint32_t instance = 0;
+            const Hit h = scene.cast(origin, d, t, sensor.max_range, instance);
+            if (h.label == 0) continue;  // no return
+            const double r = h.t + noise(rng);
+            const Eigen::Vector3d p = d * r;  // LiDAR frame (no rotation in this scene)
+            pts.insert(pts.end(), {float(p.x()), float(p.y()), float(p.z()),
+                                   float(0.1 + 0.01 * (h.label % 50))});
+            labels.push_back(h.label | (instance << 16));
+            moving_points += hif::io::isMovingClass(h.label) ? 1 : 0;
+        }
+        total_points += labels.size();
+        const std::string name = hif::io::frameName(i);
+        std::ofstream bin(out + "/velodyne/" + name + ".bin", std::ios::binary);
+        bin.write(reinterpret_cast<const char*>(pts.data()),
+                  static_cast<std::streamsize>(pts.size() * sizeof(float)));
+        bin.close();
+        if (!bin)
+            throw std::runtime_error("'" + dir + "/velodyne/" + name +
+                                     ".bin' could not be written (disk full?)");
+        hif::io::writeLabels(out + "/labels/" + name + ".label", labels);
+        progress.update(i + 1);
+    }
+    progress.finish();
+    calib.close();
+    poses.close();
+    times.close();
+    if (!calib || !poses || !times)
+        throw std::runtime_error("calib.txt, poses.txt or times.txt of '" + dir +
+                                 "' could not be written (disk full?)");
+    staged.commit();
+    log << tag << " sensor " << sensor.name << ": " << sensor.description << "\n";
+    log << tag << " wrote " << n << " scans, " << total_points << " points (" << moving_points
+        << " on moving objects) to '" << dir << "'\n";
+    return {n, total_points, moving_points};
+}
+
+}  // namespace hif::jobs

@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   job_runner.h
+ * @brief  Test helper: run an app's job in process, as the app would run it (its log, and an
+ *         error as the app's "<tag> error: <what>" line with a non-zero code), with the options
+ *         of the app's flags; `Result` and expectError() as for the apps run as programs.
+ */
+#pragma once
+
+#include <exception>
+#include <functional>
+#include <sstream>
+#include <string>
+
+#include "app_runner.h"
+#include "hif/apps/Cli.h"
+#include "hif/jobs/Clean.h"
+#include "hif/jobs/Evaluate.h"
+#include "hif/jobs/KittiToRawlog.h"
+#include "hif/jobs/SyntheticKitti.h"
+
+namespace hif::test
+{
+/** `job.run(log)` in process: code 0 and its log, or code 1 and its log with the error line. */
+template <typename Job>
+Result runJob(const char* tag, const Job& job)
+{
+    std::ostringstream log;
+    try
+    {
+        job.run(log);
+        return {0, log.str()};
+    }
+    catch (const std::exception& e)
+    {
+        return {1, log.str() + tag + " error: " + hif::apps::errorMessage(e) + "\n"};
+    }
+}
+
+/** hif-clean -i `input` -o `output` -q, with what `set` changes. */
+inline Result clean(const std::string& input, const std::string& output,
+                    const std::function<void(jobs::CleanOptions&)>& set = {})
+{
+    jobs::CleanOptions o;
+    o.input = input;
+    o.output = output;
+    o.show_progress = false;
+    if (set) set(o);
+    return runJob("[hif-clean]", jobs::Clean(o));
+}
+
+/** hif-synthetic-kitti -o `output` -n `scans`, with what `set` changes. */
+inline Result synthesize(const std::string& output, long long scans,
+                         const std::function<void(jobs::SyntheticKittiOptions&)>& set = {})
+{
+    jobs::SyntheticKittiOptions o;
+    o.output = output;
+    o.scans = scans;
+    o.show_progress = false;
+    if (set) set(o);
+    return runJob("[hif-synthetic-kitti]", jobs::SyntheticKitti(o));
+}
+
+/** kitti2rawlog -i `input` -o `output` -q, with what `set` changes. */
+inline Result toRawlog(const std::string& input, const std::string& output,
+                       const std::function<void(jobs::KittiToRawlogOptions&)>& set = {})
+{
+    jobs::KittiToRawlogOptions o;
+    o.input = input;
+    o.output = output;
+    o.show_progress = false;
+    if (set) set(o);
+    return runJob("[kitti2rawlog]", jobs::KittiToRawlog(o));
+}
+
+/** hif-eval --labels `labels` --predictions `predictions` -q, with what `set` changes. */
+inline Result evaluate(const std::string& labels, const std::string& predictions,
+                       const std::function<void(jobs::EvaluateOptions&)>& set = {})
+{
+    jobs::EvaluateOptions o;
+    o.labels = labels;
+    o.predictions = predictions;
+    o.per_scan = false;
+    if (set) set(o);
+    return runJob("[hif-eval]", jobs::Evaluate(o));
+}
+
+}  // namespace hif::test
