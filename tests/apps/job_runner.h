@@ -16,6 +16,7 @@
 #include "hif/apps/Cli.h"
 #include "hif/jobs/Clean.h"
 #include "hif/jobs/Evaluate.h"
+#include "hif/jobs/IcpSlam.h"
 #include "hif/jobs/KittiToRawlog.h"
 #include "hif/jobs/SyntheticKitti.h"
 
@@ -83,6 +84,18 @@ inline Result evaluate(const std::string& labels, const std::string& predictions
     o.per_scan = false;
     if (set) set(o);
     return runJob("[hif-eval]", jobs::Evaluate(o));
+}
+
+/** hif-icp-slam -i `input` -o `output` -q, with what `set` changes. */
+inline Result icpSlam(const std::string& input, const std::string& output,
+                      const std::function<void(jobs::IcpSlamOptions&)>& set = {})
+{
+    jobs::IcpSlamOptions o;
+    o.input = input;
+    o.output = output;
+    o.show_progress = false;
+    if (set) set(o);
+    return runJob("[hif-icp-slam]", jobs::IcpSlam(o));
 }
 
 }  // namespace hif::test

@@ -20,6 +20,7 @@
 
 #include "app_runner.h"
 #include "hif/io/KittiSequence.h"
+#include "job_runner.h"
 #include "kitti_fixture.h"
 
 using hif::test::readJson;
@@ -60,8 +61,7 @@ TEST(HifIcpSlam, TracksKitti08AndKeepsMoversOutOfItsMap)
     for (const bool hif : {true, false})
     {
         const std::string out = d + (hif ? "/hif" : "/no_hif");
-        const auto r =
-            runApp("hif-icp-slam", "-i " + seq + " -o " + out + " -q" + (hif ? "" : " --no-hif"));
+        const auto r = hif::test::icpSlam(seq, out, [&](auto& o) { o.use_hif = hif; });
         ASSERT_EQ(r.code, 0) << r.output;
         const nlohmann::json s = readJson(out + "/summary.json");
         (hif ? with : without) = s;
@@ -166,9 +166,9 @@ TEST(StockIcpSlam, CreatesFeedsAndSavesTheHifMap)
             << "icp-slam not installed (Debian package mrpt-apps; scripts/install-deps.sh)";
     const WorkDir work = workDir("stock_icp_slam");
     const std::string& d = work.path();
-    auto r = runApp("hif-synthetic-kitti", "-o " + d + "/seq --scans 3");
+    auto r = hif::test::synthesize(d + "/seq", 3);
     ASSERT_EQ(r.code, 0) << r.output;
-    r = runApp("kitti2rawlog", "-i " + d + "/seq -o " + d + "/scans.rawlog");
+    r = hif::test::toRawlog(d + "/seq", d + "/scans.rawlog");
     ASSERT_EQ(r.code, 0) << r.output;
     const std::string log = d + "/icp-slam.log";
     const std::string cmd = "cd " + d +
