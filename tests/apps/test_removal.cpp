@@ -1,0 +1,269 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   test_removal.cpp
+ * @brief  Removal floors: synthetic walkers (across the view and along the line of sight) and
+ *         cyclists, offline and online against the paper's method; real KITTI clips, and sparser
+ *         copies of 04 (32 and 16 rings).
+ */
+#include <gtest/gtest.h>
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/io/CFileOutputStream.h>
+#include <mrpt/maps/CSimplePointsMap.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CObservation2DRangeScan.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/obs/CObservationPointCloud.h>
+#include <mrpt/obs/CObservationRobotPose.h>
+#include <mrpt/obs/CObservationVelodyneScan.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/opengl/COpenGLScene.h>
+#include <mrpt/opengl/CPointCloud.h>
+#include <mrpt/opengl/CSetOfTriangles.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "app_checks.h"
+#include "app_runner.h"
+#include "hif/CHeightIntervalMap.h"
+#include "hif/apps/TopView.h"
+#include "hif/io/CloudFiles.h"
+#include "hif/io/KittiSequence.h"
+#include "hif/io/Labels.h"
+#include "hif/io/Rings.h"
+#include "job_runner.h"
+#include "kitti_fixture.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+using hif::test::bytesOf;
+using hif::test::clean;
+using hif::test::evaluate;
+using hif::test::synthesize;
+using hif::test::toRawlog;
+using Options = hif::jobs::CleanOptions;
+using hif::test::expectError;
+using hif::test::readJson;
+using hif::test::runApp;
+using hif::test::WorkDir;
+using hif::test::workDir;
+
+using hif::test::classesOf;
+using hif::test::cleanAndScore;
+using hif::test::cleanAndScoreInput;
+using hif::test::coloursOf;
+using hif::test::makeClip;
+using hif::test::noPicture;
+using hif::test::onlineMode;
+using hif::test::packed;
+using hif::test::paperConfig;
+using hif::test::plyVertexCount;
+using hif::test::rawlogObjects;
+
+// People walking in short clips, the sensor standing or moving at 3 m/s: the map alone keeps
+// most of them (kitti-paper.ini); the shipped configs remove them, offline and online, and keep
+// the static scene.
+TEST(Walkers, SyntheticWalkersAreRemovedOfflineAndOnline)
+{
+    if (HIF_SANITIZED)
+        GTEST_SKIP() << "removal floors: the plain suite (scripts/test.sh) checks them; under the "
+                        "sanitizers the same pipeline runs in SyntheticPipeline.* (this test "
+                        "takes 45 s there)";
+    const WorkDir work = workDir("walkers_" + std::to_string(getpid()));
+    for (const auto& [speed, seed] : {std::pair{0, 3}, std::pair{3, 2}})
+    {
+        const std::string seq = work.path() + "/v" + std::to_string(speed);
+        SCOPED_TRACE(seq);
+        ASSERT_NO_FATAL_FAILURE(makeClip(seq, "walkers", speed, seed));
+        const json paper = cleanAndScore(seq, "paper", paperConfig);
+        const json offline = cleanAndScore(seq, "offline");
+        const json online = cleanAndScore(seq, "online", onlineMode);
+        const double paper_da = paper["per_moving_class"]["moving-person"]["DA"].get<double>();
+        // Measured: person DA 97 and 92 offline, 86 and 77 online (the paper: under 40; testing
+        // the first point of a run alone gave 96 and 86 offline, 75 and 70 online).
+        for (const json* s : {&offline, &online})
+        {
+            EXPECT_GE((*s)["total"]["SA"].get<double>(), 99.5);
+            EXPECT_GT((*s)["per_moving_class"]["moving-person"]["dynamic_total"].get<int>(), 1000);
+        }
+        EXPECT_GE(offline["per_moving_class"]["moving-person"]["DA"].get<double>(), 85.0);
+        EXPECT_GE(online["per_moving_class"]["moving-person"]["DA"].get<double>(), 72.0);
+        EXPECT_LT(paper_da, 50.0);
+    }
+}
+
+// People walking towards the sensor or away from it, within 15 degrees of its line of sight
+// (issue 23's hard case): the beams through where a person was land on the person again, a
+// little nearer or farther, so fewer are removed than of the people crossing the view. The floors
+// guard today's figures (person DA 94.2 and 72.9 offline, 65.8 and 58.3 online; before the
+// free-space test followed a surface drifting along the beams, 80.5 offline on the first clip;
+// the paper's method 30.6 and 19.0); the issue's targets are 85 offline and 75 online.
+TEST(Walkers, WalkersAlongTheLineOfSightAreRemovedInPart)
+{
+    if (HIF_SANITIZED)
+        GTEST_SKIP() << "removal floors: the plain suite (scripts/test.sh) checks them";
+    const WorkDir work = workDir("radial_" + std::to_string(getpid()));
+    for (const auto& [speed, seed] : {std::pair{0, 1}, std::pair{3, 2}})
+    {
+        const std::string seq = work.path() + "/v" + std::to_string(speed);
+        SCOPED_TRACE(seq);
+        ASSERT_NO_FATAL_FAILURE(makeClip(seq, "radial", speed, seed));
+        // The scene is what it says: each person seen in the first and the last scan moved along
+        // the line of sight from the sensor (within 15 degrees, and some more for the centroid of
+        // what is seen of a person).
+        const hif::io::KittiSequence kitti(seq);
+        std::map<uint32_t, std::vector<Eigen::Vector3d>> centroids;  // instance -> first, last
+        for (const std::size_t i : {std::size_t{0}, kitti.size() - 1})
+        {
+            const hif::io::Cloud c = kitti.readScan(i);
+            const std::vector<uint32_t> labels = hif::io::readLabels(kitti.labelFile(i));
+            std::map<uint32_t, std::pair<Eigen::Vector3d, int>> sum;
+            for (std::size_t k = 0; k < c.size(); ++k)
+                if ((labels[k] & 0xFFFF) == 254)
+                {
+                    auto& [p, n] = sum[labels[k] >> 16];
+                    if (n == 0) p.setZero();
+                    p += kitti.pose(i) * Eigen::Vector3d(c.x[k], c.y[k], c.z[k]);
+                    ++n;
+                }
+            for (const auto& [id, pn] : sum)
+                if (pn.second >= 30) centroids[id].push_back(pn.first / pn.second);
+        }
+        const Eigen::Vector3d sensor_mid =
+            0.5 * (kitti.pose(0).translation() + kitti.pose(kitti.size() - 1).translation());
+        std::size_t people = 0;
+        for (const auto& [id, c] : centroids)
+        {
+            if (c.size() != 2) continue;
+            Eigen::Vector3d moved = c[1] - c[0], los = 0.5 * (c[0] + c[1]) - sensor_mid;
+            moved.z() = los.z() = 0;
+            ASSERT_GT(moved.norm(), 0.4) << "person " << id;
+            const double cosine = std::abs(moved.dot(los)) / (moved.norm() * los.norm());
+            EXPECT_GT(cosine, std::cos(25.0 * M_PI / 180.0)) << "person " << id;
+            ++people;
+        }
+        EXPECT_GE(people, 3u);
+        const json paper = cleanAndScore(seq, "paper", paperConfig);
+        const json offline = cleanAndScore(seq, "offline");
+        const json online = cleanAndScore(seq, "online", onlineMode);
+        for (const json* s : {&offline, &online})
+        {
+            EXPECT_GE((*s)["total"]["SA"].get<double>(), 99.5);
+            EXPECT_GT((*s)["per_moving_class"]["moving-person"]["dynamic_total"].get<int>(), 3000);
+        }
+        EXPECT_GE(offline["per_moving_class"]["moving-person"]["DA"].get<double>(), 70.0);
+        EXPECT_GE(online["per_moving_class"]["moving-person"]["DA"].get<double>(), 55.0);
+        EXPECT_LT(paper["per_moving_class"]["moving-person"]["DA"].get<double>(), 40.0);
+    }
+}
+
+// Cyclists at 3 to 6 m/s, the sensor moving at 3 m/s: they move fast enough for the map to
+// remove much of them, the rest (the bicycle's low parts, near the ground) is the free-space
+// test's.
+TEST(Cyclists, SyntheticCyclistsAreRemovedOfflineAndOnline)
+{
+    if (HIF_SANITIZED)
+        GTEST_SKIP() << "removal floors: the plain suite (scripts/test.sh) checks them; under the "
+                        "sanitizers the same pipeline runs in SyntheticPipeline.* (this test "
+                        "takes 45 s there)";
+    const WorkDir work = workDir("cyclists_" + std::to_string(getpid()));
+    const std::string seq = work.path() + "/v3";
+    ASSERT_NO_FATAL_FAILURE(makeClip(seq, "cyclists", 3, 2));
+    const json paper = cleanAndScore(seq, "paper", paperConfig);
+    const json offline = cleanAndScore(seq, "offline");
+    const json online = cleanAndScore(seq, "online", onlineMode);
+    auto da = [](const json& s)
+    { return s["per_moving_class"]["moving-bicyclist"]["DA"].get<double>(); };
+    // Measured: DA 90.5 offline, 80.0 online; the paper 71.2.
+    for (const json* s : {&offline, &online})
+    {
+        EXPECT_GE((*s)["total"]["SA"].get<double>(), 99.5);
+        EXPECT_GT((*s)["per_moving_class"]["moving-bicyclist"]["dynamic_total"].get<int>(), 1000);
+    }
+    EXPECT_GE(da(offline), 85.0);
+    EXPECT_GE(da(online), 72.0);
+    EXPECT_LT(da(paper), da(offline) - 10.0);
+}
+
+class RealKitti : public ::testing::TestWithParam<std::tuple<std::string, double, double>>
+{
+};
+
+TEST_P(RealKitti, OfflineCleaningMeetsTheFloors)
+{
+    const auto& [seq, sa_floor, aa_floor] = GetParam();
+    const std::string dir = hif::test::kittiRoot() + "/sequences/" + seq;
+    HIF_REQUIRE_KITTI_SEQUENCE(dir);
+    const WorkDir work = workDir("kitti" + seq);
+    const std::string& w = work.path();
+    auto r = runApp("kitti2rawlog", "-i " + dir + " -o " + w + "/scans.rawlog --external");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const json scores = cleanAndScoreInput(w + "/scans.rawlog", dir + "/labels", w + "/out");
+    const json& s = scores["total"];
+    EXPECT_GE(s["SA"].get<double>(), sa_floor) << s;
+    EXPECT_GE(s["AA"].get<double>(), aa_floor) << s;
+    // 04's walking person, 35-43 m away: mostly removed (measured 92 %; 69 % testing points
+    // within 40 m only, 5 % without the free-space test).
+    if (seq == "04")
+    {
+        EXPECT_GE(scores["per_moving_class"]["moving-person"]["DA"].get<double>(), 85.0);
+    }
+}
+
+// The issue's targets as floors (04: AA >= 95; 03: SA >= 98), and SA floors a little under
+// what the shipped kitti.ini measures (01: SA 99.13, AA 95.67; 03: SA 98.77; 04: SA 98.85, AA
+// 96.51). The results are deterministic, so a failure is a regression, not noise.
+INSTANTIATE_TEST_SUITE_P(Sequences, RealKitti,
+                         ::testing::Values(std::make_tuple("01", 98.6, 95.0),
+                                           std::make_tuple("03", 98.0, 98.0),
+                                           std::make_tuple("04", 98.3, 95.0)));
+
+// KITTI 04 with every 2nd and every 4th ring (about an HDL-32E's and a VLP-16's spacing): the
+// copies hold their rings and labels, and are cleaned. The floors are a little under today's
+// figures (misses where beams passed; 32 rings: SA 98.14, AA 95.15; 16 rings: SA 95.84, AA
+// 91.92), as a guard against regressions on the way to issue 20's SA >= 98.
+TEST(RealKittiRings, SparserCopiesOf04KeepTheirRingsAndLabelsAndAreCleaned)
+{
+    const std::string dir = hif::test::kittiRoot() + "/sequences/04";
+    HIF_REQUIRE_KITTI_SEQUENCE(dir);
+    const WorkDir work = workDir("kitti04_rings");
+    for (const auto& [k, sa_floor, aa_floor] :
+         {std::tuple{2, 98.0, 94.8}, std::tuple{4, 95.7, 91.7}})
+    {
+        SCOPED_TRACE(k);
+        const std::string seq = work.path() + "/every" + std::to_string(k);
+        const std::string cmd = std::string(HIF_DECIMATE_RINGS) + " " + dir + " " + seq + " " +
+                                std::to_string(k) + " > /dev/null";
+        ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+        const hif::io::KittiSequence full(dir), sparse(seq);
+        ASSERT_EQ(sparse.size(), full.size());
+        for (std::size_t i = 0; i < sparse.size(); ++i)
+        {
+            const auto rings = hif::io::ringOfEachPoint(sparse.readScan(i));
+            EXPECT_EQ(rings.back() + 1, 64u / unsigned(k) + 1) << "scan " << i;
+            EXPECT_EQ(hif::io::readLabels(sparse.labelFile(i)).size(), sparse.pointCount(i));
+            EXPECT_NEAR(double(sparse.pointCount(i)) / double(full.pointCount(i)), 1.0 / k, 0.05);
+        }
+        const json s = cleanAndScoreInput(seq, seq + "/labels", seq + "_out", noPicture)["total"];
+        EXPECT_GE(s["SA"].get<double>(), sa_floor) << s;
+        EXPECT_GE(s["AA"].get<double>(), aa_floor) << s;
+    }
+}
+
+// --rawlog-out: the scans again without their dynamic points, a rawlog MRPT's own tools and
+// hif-clean read back (with the same poses and frame numbers), holding exactly the kept points.

@@ -1,0 +1,226 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file   test_sensors.cpp
+ * @brief  Other LiDARs: each sensor of the generator scans with its own beams, and each one's clips
+ *         are cleaned with the defaults (floors); a sensor model given in the config, and a wrong
+ * one warned of.
+ */
+#include <gtest/gtest.h>
+#include <mrpt/io/CFileGZInputStream.h>
+#include <mrpt/io/CFileOutputStream.h>
+#include <mrpt/maps/CSimplePointsMap.h>
+#include <mrpt/obs/CActionCollection.h>
+#include <mrpt/obs/CObservation2DRangeScan.h>
+#include <mrpt/obs/CObservation3DRangeScan.h>
+#include <mrpt/obs/CObservationOdometry.h>
+#include <mrpt/obs/CObservationPointCloud.h>
+#include <mrpt/obs/CObservationRobotPose.h>
+#include <mrpt/obs/CObservationVelodyneScan.h>
+#include <mrpt/obs/CSensoryFrame.h>
+#include <mrpt/opengl/COpenGLScene.h>
+#include <mrpt/opengl/CPointCloud.h>
+#include <mrpt/opengl/CSetOfTriangles.h>
+#include <mrpt/serialization/CArchive.h>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "app_checks.h"
+#include "app_runner.h"
+#include "hif/CHeightIntervalMap.h"
+#include "hif/apps/TopView.h"
+#include "hif/io/CloudFiles.h"
+#include "hif/io/KittiSequence.h"
+#include "hif/io/Labels.h"
+#include "hif/io/Rings.h"
+#include "job_runner.h"
+#include "kitti_fixture.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+using hif::test::bytesOf;
+using hif::test::clean;
+using hif::test::evaluate;
+using hif::test::synthesize;
+using hif::test::toRawlog;
+using Options = hif::jobs::CleanOptions;
+using hif::test::expectError;
+using hif::test::readJson;
+using hif::test::runApp;
+using hif::test::WorkDir;
+using hif::test::workDir;
+
+using hif::test::classesOf;
+using hif::test::cleanAndScore;
+using hif::test::cleanAndScoreInput;
+using hif::test::coloursOf;
+using hif::test::makeClip;
+using hif::test::noPicture;
+using hif::test::onlineMode;
+using hif::test::packed;
+using hif::test::paperConfig;
+using hif::test::plyVertexCount;
+using hif::test::rawlogObjects;
+
+TEST(HifSyntheticKitti, EachSensorScansWithItsOwnBeams)
+{
+    const WorkDir work = workDir("sensors_" + std::to_string(getpid()));
+    struct Case
+    {
+        std::string sensor;
+        int beams;  ///< distinct elevations (0: a rosette)
+        double top, bottom;
+    };
+    for (const Case& c : std::vector<Case>{{"hdl-64e", 64, 2.0, -24.8},
+                                           {"hdl-32e", 32, 10.67, -30.67},
+                                           {"vlp-16", 16, 15.0, -15.0},
+                                           {"os1-128", 128, 22.5, -22.5},
+                                           {"mid-70", 0, 0, 0}})
+    {
+        SCOPED_TRACE(c.sensor);
+        const std::string seq = work.path() + "/" + c.sensor;
+        const auto r = synthesize(seq, 2,
+                                  [&](hif::jobs::SyntheticKittiOptions& o)
+                                  {
+                                      o.scene = "walkers";
+                                      o.sensor = c.sensor;
+                                  });
+        ASSERT_EQ(r.code, 0) << r.output;
+        const hif::io::KittiSequence s(seq);
+        std::vector<hif::io::Cloud> scans{s.readScan(0), s.readScan(1)};
+        // Range noise moves a return along its beam: its elevation is the beam's. Each return
+        // lies on one of the sensor's beams (evenly spaced from top to bottom here).
+        std::set<int> hit;  // beams with a return
+        std::size_t off_beam = 0;
+        double widest = 0;  // angle off the forward axis, degrees
+        for (const auto& scan : scans)
+            for (std::size_t i = 0; i < scan.size(); ++i)
+            {
+                const double rxy = std::hypot(scan.x[i], scan.y[i]);
+                const double range = std::hypot(rxy, scan.z[i]);
+                widest = std::max(widest, std::acos(scan.x[i] / range) * 180.0 / M_PI);
+                if (c.beams == 0) continue;
+                const double el = std::atan2(scan.z[i], rxy) * 180.0 / M_PI;
+                const double step = (c.top - c.bottom) / (c.beams - 1);
+                const long b = std::lround((c.top - el) / step);
+                if (b < 0 || b >= c.beams || std::abs(c.top - double(b) * step - el) > 0.01)
+                    ++off_beam;
+                else
+                    hit.insert(int(b));
+            }
+        if (c.beams > 0)
+        {
+            EXPECT_EQ(off_beam, 0u);
+            EXPECT_GE(double(hit.size()), 0.75 * c.beams) << "most beams return something";
+            EXPECT_GT(widest, 150.0) << "a spinning sensor sees all around";
+        }
+        else
+        {
+            // The rosette: ahead only, within its 70.4-degree cone, and never the same path.
+            EXPECT_LE(widest, 35.2 + 0.5);
+            std::size_t same = 0;
+            const std::size_t n = std::min(scans[0].size(), scans[1].size());
+            for (std::size_t i = 0; i < n; ++i)
+                same += scans[0].x[i] == scans[1].x[i] && scans[0].y[i] == scans[1].y[i];
+            EXPECT_LT(same, n / 100);
+            EXPECT_GT(n, 3000u);
+        }
+    }
+}
+
+// Every sensor of hif-synthetic-kitti, in the street (cars, sliding boxes) and walkers scenes,
+// cleaned end to end with the shipped defaults (the sensor model estimated from the scans):
+// floors a little under today's figures (scripts/sensors.sh, seed 1, 10 scans; doc/sensors.md).
+// And a model given in the config: used from the start, and a wrong one warned of.
+TEST(Sensors, EachSensorsClipIsCleanedWithTheDefaults)
+{
+    if (HIF_SANITIZED) GTEST_SKIP() << "removal floors: the plain suite (scripts/test.sh)";
+    const WorkDir work = workDir("sensor_clips_" + std::to_string(getpid()));
+    struct Floors
+    {
+        std::string sensor;
+        double street_sa, car_da, walkers_sa, person_da;
+    };
+    for (const Floors& f : std::vector<Floors>{{"hdl-64e", 99.0, 99.3, 99.6, 86.0},
+                                               {"hdl-32e", 98.4, 98.3, 99.5, 75.0},
+                                               {"vlp-16", 97.0, 95.0, 99.2, 61.0},
+                                               {"os1-128", 98.8, 99.3, 99.5, 87.0},
+                                               {"mid-70", 73.5, 65.0, 82.0, 80.0}})
+        for (const std::string scene : {"street", "walkers"})
+        {
+            SCOPED_TRACE(f.sensor + " " + scene);
+            const std::string seq = work.path() + "/" + f.sensor + "_" + scene;
+            auto r = synthesize(seq, 10,
+                                [&](hif::jobs::SyntheticKittiOptions& o)
+                                {
+                                    o.scene = scene;
+                                    o.sensor = f.sensor;
+                                });
+            ASSERT_EQ(r.code, 0) << r.output;
+            const json s = cleanAndScoreInput(seq, seq + "/labels", seq + "/out", noPicture);
+            const json& total = s["total"];
+            if (scene == "street")
+            {
+                EXPECT_GE(total["SA"].get<double>(), f.street_sa);
+                EXPECT_GE(s["per_moving_class"]["moving-car"]["DA"].get<double>(), f.car_da);
+            }
+            else
+            {
+                EXPECT_GE(total["SA"].get<double>(), f.walkers_sa);
+                EXPECT_GE(s["per_moving_class"]["moving-person"]["DA"].get<double>(), f.person_da);
+            }
+        }
+
+    // The VLP-16's beams given in the config: the map's model from the start (in summary.json,
+    // "given"); an HDL-64E's given instead, the scans contradict it, and hif-clean says so.
+    const std::string seq = work.path() + "/vlp-16_street";
+    std::stringstream text;
+    text << std::ifstream(HIF_SHARE_DIR "/config/kitti.ini").rdbuf();
+    std::string vlp16 = "sensor_beams_deg=", hdl64 = "sensor_beams_deg=";
+    for (int b = 0; b < 16; ++b) vlp16 += " " + std::to_string(-15 + 2 * b);
+    for (int b = 0; b < 64; ++b) hdl64 += " " + std::to_string(-24.8 + 26.8 * b / 63.0);
+    const std::string tail = "\nsensor_horizontal_resolution_deg=0.2\n";
+    std::ofstream(seq + "/vlp16.ini") << text.str() << vlp16 << tail;
+    std::ofstream(seq + "/hdl64.ini") << text.str() << hdl64 << tail;
+    auto r = clean(seq, seq + "/given",
+                   [&](Options& o)
+                   {
+                       o.picture = false;
+                       o.config = seq + "/vlp16.ini";
+                   });
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("sensor : 16 beams from -15.00 to 15.00 deg, 2.000 deg apart"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("(given in the config)"), std::string::npos);
+    EXPECT_EQ(r.output.find("does not look like"), std::string::npos) << r.output;
+    const json g = readJson(seq + "/given/summary.json")["sensor"];
+    EXPECT_TRUE(g["given"].get<bool>());
+    EXPECT_EQ(g["beams"].get<int>(), 16);
+    EXPECT_EQ(g["scans_checked"].get<int>(), 1);  // the first scan
+    r = clean(seq, seq + "/wrong",
+              [&](Options& o)
+              {
+                  o.picture = false;
+                  o.config = seq + "/hdl64.ini";
+              });
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("warning: scan 0 does not look like the sensor given in the config "
+                            "(is it this LiDAR's?): 64 beams expected, the scan has 16"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(readJson(seq + "/wrong/summary.json")["sensor"]["contradictions"].size(), 1u);
+}
