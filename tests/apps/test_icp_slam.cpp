@@ -14,6 +14,7 @@
 #include <mrpt/serialization/CArchive.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -188,4 +189,41 @@ TEST(StockIcpSlam, CreatesFeedsAndSavesTheHifMap)
     mrpt::opengl::COpenGLScene scene;
     ASSERT_TRUE(scene.loadFromFile(prefix + "_3D.3Dscene"));
     EXPECT_TRUE(scene.getByName("hif::CHeightIntervalMap"));
+}
+
+// hif-icp-slam's [SLAM] is read as the map's options are: a misspelt key, a value that is not a
+// number, one out of its range and a contradiction are each named with the file and section,
+// before anything is written.
+TEST(HifIcpSlam, MistakesInItsSlamSectionAreNamed)
+{
+    const WorkDir work = workDir("icp_slam_settings_" + std::to_string(getpid()));
+    const std::string& d = work.path();
+    auto r = hif::test::synthesize(d + "/seq", 2);
+    ASSERT_EQ(r.code, 0) << r.output;
+    std::stringstream shipped;
+    shipped << std::ifstream(HIF_SHARE_DIR "/config/icp-slam-3d.ini").rdbuf();
+    struct Case
+    {
+        std::string from, to, message;
+    };
+    for (const Case& c : std::vector<Case>{
+             {"scan_voxel=0.75", "scan_voxle=0.75",
+              "', [SLAM]: unknown key 'scan_voxle'; did you mean 'scan_voxel'?"},
+             {"map_voxel=0.5", "map_voxel=half", "', [SLAM]: map_voxel = 'half' is not a number"},
+             {"map_radius=80", "map_radius=0.5", "', [SLAM]: map_radius = 0.500000 is not in [1"},
+             {"min_range=3", "min_range=90", "', [SLAM]: min_range must be below max_range"}})
+    {
+        SCOPED_TRACE(c.to);
+        std::string text = shipped.str();
+        const auto at = text.find(c.from);
+        ASSERT_NE(at, std::string::npos) << c.from;
+        text.replace(at, c.from.size(), c.to);
+        const std::string ini = d + "/bad.ini";
+        std::ofstream(ini) << text;
+        const std::string out = d + "/out";
+        hif::test::expectError(
+            hif::test::icpSlam(d + "/seq", out, [&](auto& o) { o.config = ini; }),
+            "'" + ini + c.message);
+        EXPECT_FALSE(std::filesystem::exists(out)) << "a refused run left its output folder";
+    }
 }

@@ -16,10 +16,15 @@
 #include <sys/resource.h>
 
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <random>
+#include <sstream>
 
 #include "field_helpers.h"
 #include "hif/CHeightIntervalMap.h"
+#include "hif/IniSection.h"
+#include "work_dir.h"
 
 using hif::CHeightIntervalMap;
 
@@ -464,4 +469,51 @@ TEST(CHeightIntervalMapIni, ASensorGivenInTheIniIsTheMapsModel)
             EXPECT_NE(std::string(e.what()).find(insert), std::string::npos) << e.what();
         }
     }
+}
+
+// A ConfigText is read once: the map's strict checks read its text from memory (the file may be
+// gone), and still name the file in what they report.
+TEST(CHeightIntervalMapIni, AConfigTextIsReadOnceAndNamedInErrors)
+{
+    const hif::test::WorkDir dir("config_text");
+    std::stringstream shipped;
+    shipped << std::ifstream(HIF_SHARE_DIR "/config/kitti.ini").rdbuf();
+    const std::string good = dir.path() + "/good.ini", bad = dir.path() + "/bad.ini";
+    std::ofstream(good) << shipped.str();
+    std::string text = shipped.str();
+    const std::string from = "alpha=0.6";
+    text.replace(text.find(from), from.size(), "alpha 0.6");
+    std::ofstream(bad) << text;
+    const hif::ConfigText good_cfg(good), bad_cfg(bad);
+    std::filesystem::remove(good);
+    std::filesystem::remove(bad);
+
+    mrpt::maps::TSetOfMetricMapInitializers inits;
+    inits.loadFromConfigFile(good_cfg, "map");
+    mrpt::maps::CMultiMetricMap maps;
+    maps.setListOfMaps(inits);
+    const auto map = maps.mapByClass<hif::CHeightIntervalMap>();
+    ASSERT_TRUE(map);
+    EXPECT_DOUBLE_EQ(map->params().alpha, 0.6);
+    const hif::IniSection section(good_cfg, "map_CHeightIntervalMap_00_insertOpts");
+    EXPECT_TRUE(section.linesChecked());
+
+    try
+    {
+        mrpt::maps::TSetOfMetricMapInitializers bad_inits;
+        bad_inits.loadFromConfigFile(bad_cfg, "map");
+        ADD_FAILURE() << "a line that is not key = value was read";
+    }
+    catch (const std::exception& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("'" + bad + "', line "), std::string::npos)
+            << e.what();
+        // MRPT wraps what passes through its loader (the apps print the innermost message).
+        EXPECT_NE(
+            std::string(e.what()).find("'alpha 0.6' in [map_CHeightIntervalMap_00_insertOpts"),
+            std::string::npos)
+            << e.what();
+        EXPECT_NE(std::string(e.what()).find("is not key = value"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(hif::ConfigText(dir.path() + "/missing.ini"), std::runtime_error);
 }

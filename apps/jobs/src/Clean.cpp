@@ -7,7 +7,6 @@
  */
 #include "hif/jobs/Clean.h"
 
-#include <mrpt/config/CConfigFile.h>
 #include <mrpt/maps/CMultiMetricMap.h>
 #include <mrpt/obs/CObservationPointCloud.h>
 
@@ -21,6 +20,7 @@
 #include "clean/PoseCheck.h"
 #include "clean/Summary.h"
 #include "hif/CHeightIntervalMap.h"
+#include "hif/IniSection.h"
 #include "hif/apps/Cli.h"
 #include "hif/apps/Config.h"
 #include "hif/apps/Heap.h"
@@ -110,7 +110,7 @@ void setUp(const CleanOptions& o, Run& run)
             std::make_unique<hif::apps::StagedFile>(*o.rawlog_out, overwrite, "--rawlog-out");
 
     // Maps from the .ini, through MRPT's own machinery.
-    mrpt::config::CConfigFile cfg(run.cfg_file);
+    const hif::ConfigText cfg(run.cfg_file);  // read once, by every loader below
     hif::apps::checkMapCounts(cfg, run.section, run.cfg_file);
     mrpt::maps::TSetOfMetricMapInitializers inits;
     inits.loadFromConfigFile(cfg, run.section);

@@ -7,7 +7,7 @@
  */
 #include "hif/jobs/IcpSlam.h"
 
-#include <mrpt/config/CConfigFile.h>
+#include <mrpt/config/CLoadableOptions.h>
 #include <mrpt/maps/CMultiMetricMap.h>
 #include <mrpt/poses/CPose3DPDFGaussian.h>
 #include <mrpt/slam/CICP.h>
@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "hif/CHeightIntervalMap.h"
+#include "hif/IniSection.h"
 #include "hif/apps/Cli.h"
 #include "hif/apps/Config.h"
 #include "hif/apps/RunFiles.h"
@@ -43,36 +44,45 @@ const std::string kTag = "[hif-icp-slam]";
 /** Fewer points than this (after thinning) leave ICP's 6 degrees of freedom undetermined. */
 constexpr std::size_t kMinIcpPoints = 3;
 
-/** [SLAM] of the configuration. */
-struct Settings
+/** [SLAM] of the configuration, read as the map's options are (hif::IniSection): every key
+ *  known, every value a whole number in its range, a mistake named with the file and section. */
+struct Settings : public mrpt::config::CLoadableOptions
 {
     double scan_voxel = 0.75;  ///< scans are thinned to one centroid per voxel of this side [m]
     double map_voxel = 0.5;    ///< the map ICP aligns against keeps one point per voxel [m]
     double map_radius = 80;    ///< map points farther from the sensor are dropped [m]
     double min_range = 3;      ///< nearer scan points (the vehicle itself) are not aligned [m]
     double max_range = 80;     ///< farther scan points are not aligned [m]
-};
 
-Settings readSettings(const mrpt::config::CConfigFile& cfg, const std::string& file)
-{
-    Settings s;
-    const auto get = [&](const char* key, double& v, double lo, double hi)
+    void loadFromConfigFile(const mrpt::config::CConfigFileBase& c,
+                            const std::string& section) override
     {
-        v = cfg.read_double("SLAM", key, v);
-        if (!(v >= lo && v <= hi))
-            throw std::runtime_error("'" + file + "', [SLAM]: " + key + " = " + std::to_string(v) +
-                                     " is not in [" + std::to_string(lo) + ", " +
-                                     std::to_string(hi) + "]");
-    };
-    get("scan_voxel", s.scan_voxel, 0.01, 10);
-    get("map_voxel", s.map_voxel, 0.01, 10);
-    get("map_radius", s.map_radius, 1, 10000);
-    get("min_range", s.min_range, 0, 1000);
-    get("max_range", s.max_range, 0.1, 10000);
-    if (s.min_range >= s.max_range)
-        throw std::runtime_error("'" + file + "', [SLAM]: min_range must be below max_range");
-    return s;
-}
+        const hif::IniSection s(c, section);
+        s.requireKnownKeys({"scan_voxel", "map_voxel", "map_radius", "min_range", "max_range"});
+        const auto get = [&](const char* key, double& v, double lo, double hi)
+        {
+            s.read(key, v);
+            if (!(v >= lo && v <= hi))
+                s.fail(std::string(key) + " = " + std::to_string(v) + " is not in [" +
+                       std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        };
+        get("scan_voxel", scan_voxel, 0.01, 10);
+        get("map_voxel", map_voxel, 0.01, 10);
+        get("map_radius", map_radius, 1, 10000);
+        get("min_range", min_range, 0, 1000);
+        get("max_range", max_range, 0.1, 10000);
+        if (min_range >= max_range) s.fail("min_range must be below max_range");
+    }
+    void saveToConfigFile(mrpt::config::CConfigFileBase& c,
+                          const std::string& section) const override
+    {
+        c.write(section, "scan_voxel", scan_voxel);
+        c.write(section, "map_voxel", map_voxel);
+        c.write(section, "map_radius", map_radius);
+        c.write(section, "min_range", min_range);
+        c.write(section, "max_range", max_range);
+    }
+};
 
 /** Moving points (SemanticKITTI labels) of the scans that entered the ICP map. */
 struct MovingInMap
@@ -105,8 +115,9 @@ IcpSlamResult IcpSlam::run(std::ostream& log) const
     if (!labels_dir.empty()) files.inputFolder(labels_dir, ".label", "the labels");
     for (const std::string& n : names) files.output(out_dir + "/" + n, "the " + n + " of -o");
     hif::apps::StagedFolder staged(out_dir, names, o.overwrite, "--overwrite");
-    const mrpt::config::CConfigFile cfg(cfg_file);
-    const Settings set = readSettings(cfg, cfg_file);
+    const hif::ConfigText cfg(cfg_file);  // read once, by every loader below
+    Settings set;
+    set.loadFromConfigFile(cfg, "SLAM");
     mrpt::slam::CICP icp;
     icp.options.loadFromConfigFile(cfg, "ICP");
 

@@ -11,11 +11,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "IniSection.h"
 #include "hif/CHeightIntervalMap.h"
+#include "hif/IniSection.h"
 
 using namespace hif;
-using hif::mrpt_adapter::IniSection;
 
 namespace
 {

@@ -3,7 +3,7 @@
  * @file   IniSection.cpp
  * @brief  Strict reading of the map's .ini sections.
  */
-#include "IniSection.h"
+#include "hif/IniSection.h"
 
 #include <mrpt/config/CConfigFile.h>
 #include <mrpt/config/CConfigFileMemory.h>
@@ -18,7 +18,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace hif::mrpt_adapter
+namespace hif
 {
 namespace
 {
@@ -32,6 +32,11 @@ std::string trim(const std::string& s)
 /** The configuration's text and its file name ("" for text in memory), when it has them. */
 std::optional<std::string> textOf(const mrpt::config::CConfigFileBase& c, std::string& file)
 {
+    if (const auto* t = dynamic_cast<const ConfigText*>(&c))
+    {
+        file = t->file();
+        return t->text();
+    }
     if (const auto* f = dynamic_cast<const mrpt::config::CConfigFile*>(&c))
     {
         file = f->getAssociatedFile();
@@ -70,6 +75,16 @@ std::size_t distance(const std::string& a, const std::string& b)
 }
 }  // namespace
 
+ConfigText::ConfigText(const std::string& file) : file_(file)
+{
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw std::runtime_error("config '" + file + "' cannot be read");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    text_ = ss.str();
+    setContent(text_);
+}
+
 IniSection::IniSection(const mrpt::config::CConfigFileBase& config, std::string section)
     : config_(config), section_(std::move(section))
 {
@@ -77,6 +92,7 @@ IniSection::IniSection(const mrpt::config::CConfigFileBase& config, std::string 
     const std::optional<std::string> text = textOf(config_, file);
     where_ = (file.empty() ? "" : "'" + file + "', ") + "[" + section_ + "]";
     if (!text) return;
+    lines_checked_ = true;
     std::istringstream in(*text);
     std::string current;
     int number = 0;
@@ -200,4 +216,4 @@ void IniSection::read(const char* key, std::vector<double>& values) const
 
 bool IniSection::has(const char* key) const { return config_.keyExists(section_, key); }
 
-}  // namespace hif::mrpt_adapter
+}  // namespace hif
