@@ -10,6 +10,9 @@
 #              7), interleaved, outputs removed between runs; medians of wall time, CPU time and
 #              peak memory, the insertion and classification medians of summary.json, and the
 #              start of the process alone (hif-clean --version: MRPT and its libraries loaded).
+# A long run (issue 21: at least 128 scans of about 120,000 points) on a synthetic sequence:
+#   build/apps/hif-synthetic-kitti -o /tmp/long -n 160 --sensor os1-128
+#   HIF_BENCH_SEQUENCE=/tmp/long HIF_BENCH_PARTS=command bash scripts/bench.sh
 # Extra arguments go to the Google Benchmark, e.g.
 #   bash scripts/bench.sh --benchmark_filter=Insert
 #   HIF_BENCH_PARTS=command bash scripts/bench.sh
@@ -36,9 +39,13 @@ RUNS=${HIF_BENCH_RUNS:-7}
 WORK=$BUILD/bench-data
 DM=$WORK/dynamicmap
 mkdir -p "$WORK"
-# The benchmark layout, made once from the sequence (remade if the sequence is newer).
-if [ ! -d "$DM/pcd" ] || [ "$SEQ/velodyne" -nt "$DM/pcd" ]; then
-  "$BUILD/apps/kitti2rawlog" -i "$SEQ" -o "$DM" --dynamicmap --overwrite > /dev/null
+# The benchmark layout, made once from the sequence (remade for another sequence, or if the
+# sequence is newer).
+src_id=$(realpath "$SEQ")
+if [ ! -d "$DM/pcd" ] || [ "$SEQ/velodyne" -nt "$DM/pcd" ] \
+    || [ "$(cat "$WORK/dynamicmap.source" 2> /dev/null)" != "$src_id" ]; then
+  "$BUILD/apps/kitti2rawlog" -i "$SEQ" -o "$DM" --dynamicmap --overwrite -q > /dev/null
+  echo "$src_id" > "$WORK/dynamicmap.source"
 fi
 median() { sort -g | awk '{v[NR] = $1} END {print v[int((NR + 1) / 2)]}'; }
 field() { grep -E "\"$1\"" "$2" | head -1 | sed -E 's/.*: *([0-9.eE+-]+),?/\1/'; }
