@@ -6,41 +6,17 @@
  *         copies of 04 (32 and 16 rings).
  */
 #include <gtest/gtest.h>
-#include <mrpt/io/CFileGZInputStream.h>
-#include <mrpt/io/CFileOutputStream.h>
-#include <mrpt/maps/CSimplePointsMap.h>
-#include <mrpt/obs/CActionCollection.h>
-#include <mrpt/obs/CObservation2DRangeScan.h>
-#include <mrpt/obs/CObservation3DRangeScan.h>
-#include <mrpt/obs/CObservationOdometry.h>
-#include <mrpt/obs/CObservationPointCloud.h>
-#include <mrpt/obs/CObservationRobotPose.h>
-#include <mrpt/obs/CObservationVelodyneScan.h>
-#include <mrpt/obs/CSensoryFrame.h>
-#include <mrpt/opengl/COpenGLScene.h>
-#include <mrpt/opengl/CPointCloud.h>
-#include <mrpt/opengl/CSetOfTriangles.h>
-#include <mrpt/serialization/CArchive.h>
-
-#include <opencv2/imgcodecs.hpp>
 
 #include <unistd.h>
 
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <functional>
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <set>
-#include <sstream>
 
 #include "app_checks.h"
 #include "app_runner.h"
-#include "hif/CHeightIntervalMap.h"
-#include "hif/apps/TopView.h"
 #include "hif/io/CloudFiles.h"
 #include "hif/io/KittiSequence.h"
 #include "hif/io/Labels.h"
@@ -48,32 +24,19 @@
 #include "job_runner.h"
 #include "kitti_fixture.h"
 
-namespace fs = std::filesystem;
 using nlohmann::json;
 
-using hif::test::bytesOf;
 using hif::test::clean;
-using hif::test::evaluate;
-using hif::test::synthesize;
-using hif::test::toRawlog;
-using Options = hif::jobs::CleanOptions;
-using hif::test::expectError;
-using hif::test::readJson;
 using hif::test::runApp;
 using hif::test::WorkDir;
 using hif::test::workDir;
 
-using hif::test::classesOf;
 using hif::test::cleanAndScore;
 using hif::test::cleanAndScoreInput;
-using hif::test::coloursOf;
 using hif::test::makeClip;
 using hif::test::noPicture;
 using hif::test::onlineMode;
-using hif::test::packed;
 using hif::test::paperConfig;
-using hif::test::plyVertexCount;
-using hif::test::rawlogObjects;
 
 // People walking in short clips, the sensor standing or moving at 3 m/s: the map alone keeps
 // most of them (kitti-paper.ini); the shipped configs remove them, offline and online, and keep

@@ -7,16 +7,9 @@
  */
 #include <gtest/gtest.h>
 #include <mrpt/io/CFileGZInputStream.h>
-#include <mrpt/io/CFileOutputStream.h>
-#include <mrpt/maps/CSimplePointsMap.h>
-#include <mrpt/obs/CActionCollection.h>
-#include <mrpt/obs/CObservation2DRangeScan.h>
-#include <mrpt/obs/CObservation3DRangeScan.h>
 #include <mrpt/obs/CObservationOdometry.h>
 #include <mrpt/obs/CObservationPointCloud.h>
 #include <mrpt/obs/CObservationRobotPose.h>
-#include <mrpt/obs/CObservationVelodyneScan.h>
-#include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/opengl/COpenGLScene.h>
 #include <mrpt/opengl/CPointCloud.h>
 #include <mrpt/opengl/CSetOfTriangles.h>
@@ -27,14 +20,10 @@
 #include <unistd.h>
 
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <functional>
-#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <set>
 #include <sstream>
 
 #include "app_checks.h"
@@ -44,9 +33,7 @@
 #include "hif/io/CloudFiles.h"
 #include "hif/io/KittiSequence.h"
 #include "hif/io/Labels.h"
-#include "hif/io/Rings.h"
 #include "job_runner.h"
-#include "kitti_fixture.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -64,14 +51,9 @@ using hif::test::WorkDir;
 using hif::test::workDir;
 
 using hif::test::classesOf;
-using hif::test::cleanAndScore;
-using hif::test::cleanAndScoreInput;
 using hif::test::coloursOf;
-using hif::test::makeClip;
 using hif::test::noPicture;
-using hif::test::onlineMode;
 using hif::test::packed;
-using hif::test::paperConfig;
 using hif::test::plyVertexCount;
 using hif::test::rawlogObjects;
 
