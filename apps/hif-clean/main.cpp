@@ -202,5 +202,5 @@ int run(Cli& cli)
 int main(int argc, char** argv)
 {
     hif::apps::keepScanBuffersInTheHeap();
-    return hif::apps::cliMain<Cli>("[hif-clean]", argc, argv, run);
+    return hif::apps::cliMain<Cli>(hif::jobs::Clean::kTag, argc, argv, run);
 }

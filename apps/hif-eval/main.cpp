@@ -102,4 +102,7 @@ int run(Cli& cli)
 }
 }  // namespace
 
-int main(int argc, char** argv) { return hif::apps::cliMain<Cli>("[hif-eval]", argc, argv, run); }
+int main(int argc, char** argv)
+{
+    return hif::apps::cliMain<Cli>(hif::jobs::Evaluate::kTag, argc, argv, run);
+}

@@ -67,5 +67,5 @@ int run(Cli& cli)
 
 int main(int argc, char** argv)
 {
-    return hif::apps::cliMain<Cli>("[hif-icp-slam]", argc, argv, run);
+    return hif::apps::cliMain<Cli>(hif::jobs::IcpSlam::kTag, argc, argv, run);
 }

@@ -82,5 +82,5 @@ int run(Cli& cli)
 
 int main(int argc, char** argv)
 {
-    return hif::apps::cliMain<Cli>("[hif-synthetic-kitti]", argc, argv, run);
+    return hif::apps::cliMain<Cli>(hif::jobs::SyntheticKitti::kTag, argc, argv, run);
 }

@@ -99,5 +99,5 @@ int run(Cli& cli)
 
 int main(int argc, char** argv)
 {
-    return hif::apps::cliMain<Cli>("[kitti2rawlog]", argc, argv, run);
+    return hif::apps::cliMain<Cli>(hif::jobs::KittiToRawlog::kTag, argc, argv, run);
 }

@@ -22,9 +22,10 @@
 
 namespace hif::test
 {
-/** `job.run(log)` in process: code 0 and its log, or code 1 and its log with the error line. */
+/** `job.run(log)` in process: code 0 and its log, or code 1 and its log with the error line
+ *  its app would print. */
 template <typename Job>
-Result runJob(const char* tag, const Job& job)
+Result runJob(const Job& job)
 {
     std::ostringstream log;
     try
@@ -34,7 +35,7 @@ Result runJob(const char* tag, const Job& job)
     }
     catch (const std::exception& e)
     {
-        return {1, log.str() + tag + " error: " + hif::apps::errorMessage(e) + "\n"};
+        return {1, log.str() + Job::kTag + " error: " + hif::apps::errorMessage(e) + "\n"};
     }
 }
 
@@ -47,7 +48,7 @@ inline Result clean(const std::string& input, const std::string& output,
     o.output = output;
     o.show_progress = false;
     if (set) set(o);
-    return runJob("[hif-clean]", jobs::Clean(o));
+    return runJob(jobs::Clean(o));
 }
 
 /** hif-synthetic-kitti -o `output` -n `scans`, with what `set` changes. */
@@ -59,7 +60,7 @@ inline Result synthesize(const std::string& output, long long scans,
     o.scans = scans;
     o.show_progress = false;
     if (set) set(o);
-    return runJob("[hif-synthetic-kitti]", jobs::SyntheticKitti(o));
+    return runJob(jobs::SyntheticKitti(o));
 }
 
 /** kitti2rawlog -i `input` -o `output` -q, with what `set` changes. */
@@ -71,7 +72,7 @@ inline Result toRawlog(const std::string& input, const std::string& output,
     o.output = output;
     o.show_progress = false;
     if (set) set(o);
-    return runJob("[kitti2rawlog]", jobs::KittiToRawlog(o));
+    return runJob(jobs::KittiToRawlog(o));
 }
 
 /** hif-eval --labels `labels` --predictions `predictions` -q, with what `set` changes. */
@@ -83,7 +84,7 @@ inline Result evaluate(const std::string& labels, const std::string& predictions
     o.predictions = predictions;
     o.per_scan = false;
     if (set) set(o);
-    return runJob("[hif-eval]", jobs::Evaluate(o));
+    return runJob(jobs::Evaluate(o));
 }
 
 /** hif-icp-slam -i `input` -o `output` -q, with what `set` changes. */
@@ -95,7 +96,7 @@ inline Result icpSlam(const std::string& input, const std::string& output,
     o.output = output;
     o.show_progress = false;
     if (set) set(o);
-    return runJob("[hif-icp-slam]", jobs::IcpSlam(o));
+    return runJob(jobs::IcpSlam(o));
 }
 
 }  // namespace hif::test

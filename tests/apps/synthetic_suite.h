@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file   synthetic_suite.h
- * @brief  Test helper: a test suite whose tests share one short synthetic sequence (6 scans) and
- *         its rawlog, made once for the suite (in process), in a work folder that goes when the
- * suite passes.
+ * @brief  Test helper: a test suite whose tests share one short synthetic sequence and its
+ *         rawlog, made once for the suite (in process), in a work folder (one per process: CTest
+ *         runs two test processes at a time) that goes when the suite passes.
  */
 #pragma once
 
@@ -21,8 +21,9 @@
 
 namespace hif::test
 {
-/** The suite `Suite` (which names its folder in `Suite::kFolder`): `root_` holds `seq/` (the
- *  sequence) and `all.rawlog` (its conversion). */
+/** The suite `Suite`, which names its folder (`Suite::kFolder`), its number of scans
+ *  (`Suite::kScans`) and its rawlog (`Suite::kRawlog`): `root_` holds `seq/` (the sequence) and
+ *  the rawlog (its conversion). */
 template <typename Suite>
 class SyntheticSuite : public ::testing::Test
 {
@@ -32,11 +33,12 @@ protected:
         work_ = std::make_unique<WorkDir>(kWork + "/" + Suite::kFolder + "_" +
                                           std::to_string(getpid()));
         root_ = work_->path();
-        const auto g = synthesize(root_ + "/seq", 6);
-        const auto c = g.code == 0 ? toRawlog(root_ + "/seq", root_ + "/all.rawlog") : g;
+        const auto g = synthesize(root_ + "/seq", Suite::kScans);
+        const auto c = g.code == 0 ? toRawlog(root_ + "/seq", root_ + "/" + Suite::kRawlog) : g;
         setup_ok_ = g.code == 0 && c.code == 0;
         setup_log_ = g.output + c.output;
     }
+    // A failed set-up fails every test (gtest would report them as skipped).
     void SetUp() override { ASSERT_TRUE(setup_ok_) << setup_log_; }
     // The folder goes unless a test failed.
     static void TearDownTestSuite() { work_.reset(); }

@@ -34,6 +34,8 @@ class BadInput : public hif::test::SyntheticSuite<BadInput>
 {
 public:
     static constexpr const char* kFolder = "bad_input";
+    static constexpr long long kScans = 6;
+    static constexpr const char* kRawlog = "all.rawlog";
 };
 }  // namespace
 

@@ -51,6 +51,8 @@ class NothingLost : public SyntheticSuite<NothingLost>
 {
 public:
     static constexpr const char* kFolder = "nothing_lost";
+    static constexpr long long kScans = 6;
+    static constexpr const char* kRawlog = "all.rawlog";
 };
 
 /** An app started in the background, its stdout and stderr into `log`. */

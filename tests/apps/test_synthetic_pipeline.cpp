@@ -17,8 +17,6 @@
 
 #include <opencv2/imgcodecs.hpp>
 
-#include <unistd.h>
-
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -34,6 +32,7 @@
 #include "hif/io/KittiSequence.h"
 #include "hif/io/Labels.h"
 #include "job_runner.h"
+#include "synthetic_suite.h"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
@@ -57,31 +56,14 @@ using hif::test::packed;
 using hif::test::plyVertexCount;
 using hif::test::rawlogObjects;
 
-class SyntheticPipeline : public ::testing::Test
+/** Twenty synthetic scans and their rawlog, shared by the suite's tests. */
+class SyntheticPipeline : public hif::test::SyntheticSuite<SyntheticPipeline>
 {
-protected:
-    // CTest runs each test in its own process, two at a time: one folder per process.
-    static void SetUpTestSuite()
-    {
-        work_ =
-            std::make_unique<WorkDir>(hif::test::kWork + "/synthetic_" + std::to_string(getpid()));
-        root_ = work_->path();
-        const auto g = synthesize(root_ + "/seq", 20);
-        const auto c = g.code == 0 ? toRawlog(root_ + "/seq", root_ + "/scans.rawlog") : g;
-        setup_ok_ = g.code == 0 && c.code == 0;
-        setup_log_ = g.output + c.output;
-    }
-    // A failed set-up fails every test (gtest would report them as skipped).
-    void SetUp() override { ASSERT_TRUE(setup_ok_) << setup_log_; }
-    // The folder goes unless a test failed.
-    static void TearDownTestSuite() { work_.reset(); }
-    static std::unique_ptr<WorkDir> work_;
-    static std::string root_, setup_log_;
-    static bool setup_ok_;
+public:
+    static constexpr const char* kFolder = "synthetic";
+    static constexpr long long kScans = 20;
+    static constexpr const char* kRawlog = "scans.rawlog";
 };
-std::unique_ptr<WorkDir> SyntheticPipeline::work_;
-std::string SyntheticPipeline::root_, SyntheticPipeline::setup_log_;
-bool SyntheticPipeline::setup_ok_ = false;
 
 TEST_F(SyntheticPipeline, OfflineAndOnlineCleaningScoreAndWriteEverything)
 {

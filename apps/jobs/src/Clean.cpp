@@ -34,7 +34,6 @@ namespace hif::jobs
 {
 namespace
 {
-const std::string kTag = "[hif-clean]";
 
 /** The shipped configuration for the mode and input: kitti-online.ini online, dynamicmap.ini
  *  for a DynamicMap folder, else kitti.ini. */
@@ -139,18 +138,19 @@ void setUp(const CleanOptions& o, Run& run)
 
 void printHeader(const Run& run, std::ostream& log)
 {
-    log << kTag << " input  : " << run.input
+    log << Clean::kTag << " input  : " << run.input
         << (run.poses.empty() ? "" : " at the poses of " + run.poses) << "\n"
-        << kTag << " config : " << run.cfg_file << " [" << run.section << "], "
+        << Clean::kTag << " config : " << run.cfg_file << " [" << run.section << "], "
         << run.maps.maps.size() << " map(s)\n"
-        << kTag << " mode   : "
+        << Clean::kTag << " mode   : "
         << (run.online ? "online (each scan classified with the past only)"
                        : "offline (all scans inserted, then every point classified)")
         << "\n"
-        << kTag << " output : " << run.out_dir << "\n";
+        << Clean::kTag << " output : " << run.out_dir << "\n";
     if (const auto& m = run.hif_map->grid().sensorModel())
-        log << kTag << " sensor : " << m->describe() << " (given in the config)\n";
-    for (const std::string& w : run.source->warnings()) log << kTag << " warning: " << w << "\n";
+        log << Clean::kTag << " sensor : " << m->describe() << " (given in the config)\n";
+    for (const std::string& w : run.source->warnings())
+        log << Clean::kTag << " warning: " << w << "\n";
 }
 
 /** Refuses a scan whose pose is not finite (NaN or inf in a rawlog's pose): every point of it
@@ -193,14 +193,14 @@ void reportSensor(Run& run, std::size_t k, std::ostream& log)
     if (st.sensor_estimated)
     {
         r.estimated_from_scan = k;
-        log << kTag << " sensor : " << run.hif_map->grid().sensorModel()->describe()
+        log << Clean::kTag << " sensor : " << run.hif_map->grid().sensorModel()->describe()
             << " (estimated from scan " << k << ")\n";
     }
     if (st.sensor_checked) ++r.checks;
     if (st.sensor_contradiction.empty()) return;
     constexpr std::size_t kShown = 3;
     if (r.contradictions.size() < kShown)
-        log << kTag << " warning: scan " << k << " does not look like the sensor "
+        log << Clean::kTag << " warning: scan " << k << " does not look like the sensor "
             << (r.estimated_from_scan ? "of scan " + std::to_string(*r.estimated_from_scan) +
                                             " (are the scans from one LiDAR?)"
                                       : std::string("given in the config (is it this LiDAR's?)"))
@@ -220,7 +220,7 @@ std::size_t pointsOf(const mrpt::obs::CObservation& obs)
 std::vector<hif::apps::Scan> insertAll(Run& run, Outputs& out, Timings& t, std::ostream& log)
 {
     std::vector<hif::apps::Scan> held;
-    hif::apps::Progress progress(kTag, run.online ? "inserting+classifying" : "inserting",
+    hif::apps::Progress progress(Clean::kTag, run.online ? "inserting+classifying" : "inserting",
                                  run.source->knownSize(), run.show_progress);
     hif::apps::Scan scan;
     while (run.source->next(scan))
@@ -235,7 +235,7 @@ std::vector<hif::apps::Scan> insertAll(Run& run, Outputs& out, Timings& t, std::
         if (!run.pose_check.done())
             if (const auto doubt = run.pose_check.add(scan))
             {
-                log << kTag << " warning: " << *doubt << std::endl;
+                log << Clean::kTag << " warning: " << *doubt << std::endl;
                 run.poses_doubted = true;
             }
         t.insert_ms.push_back(ms);
@@ -265,7 +265,7 @@ std::vector<hif::apps::Scan> insertAll(Run& run, Outputs& out, Timings& t, std::
  *  + free_space_window is in (read ahead and held until then). */
 void classifyAll(Run& run, std::vector<hif::apps::Scan>& held, Outputs& out, std::size_t scans)
 {
-    hif::apps::Progress progress(kTag, "classifying", scans, run.show_progress);
+    hif::apps::Progress progress(Clean::kTag, "classifying", scans, run.show_progress);
     const std::size_t w = run.hif_map->params().free_space_window;
     std::deque<hif::apps::Scan> ahead;  // read, not yet classified
     std::size_t next = 0;               // the next scan to read
@@ -382,19 +382,19 @@ CleanResult Clean::run(std::ostream& log) const
     if (run.staged_rawlog)
     {
         run.staged_rawlog->commit();
-        log << kTag << " wrote " << *o.rawlog_out << ": " << rawlog_scans
+        log << Clean::kTag << " wrote " << *o.rawlog_out << ": " << rawlog_scans
             << " scans without their dynamic points" << std::endl;
     }
     std::vector<std::string> extra;
     if (o.classes_ply) extra.emplace_back("classes.ply");
     if (o.scene) extra.emplace_back("map.3Dscene");
-    printReport(log, kTag, run.out_dir, format, run.dm_output, run.online, *run.hif_map, out, t,
-                extra);
+    printReport(log, Clean::kTag, run.out_dir, format, run.dm_output, run.online, *run.hif_map, out,
+                t, extra);
     if (out.drawsPicture() && !picture)
-        log << kTag << " map.png not drawn: no point could be drawn\n";
+        log << Clean::kTag << " map.png not drawn: no point could be drawn\n";
     if (picture && picture->points_outside > 0)
-        log << kTag << " map.png shows the map's main area: " << picture->points_outside << " of "
-            << picture->points
+        log << Clean::kTag << " map.png shows the map's main area: " << picture->points_outside
+            << " of " << picture->points
             << " points lie apart from it (more than 100 m of empty ground away: stray "
                "points, or poses far off) and are not drawn\n";
     return {run.out_dir,        t.scans,           out.points_in, out.points_kept,

@@ -40,7 +40,6 @@ using hif::apps::msSince;
 
 namespace
 {
-const std::string kTag = "[hif-icp-slam]";
 /** Fewer points than this (after thinning) leave ICP's 6 degrees of freedom undetermined. */
 constexpr std::size_t kMinIcpPoints = 3;
 
@@ -140,9 +139,9 @@ IcpSlamResult IcpSlam::run(std::ostream& log) const
                 "scan as it comes: set online=true (as share/hif/config/icp-slam-3d.ini does)");
     }
     auto source = hif::apps::openScanSource(input, {}, /*poses_required=*/false);
-    log << kTag << " input  : " << input << "\n"
-        << kTag << " config : " << cfg_file << (use_hif ? "" : " (--no-hif)") << "\n"
-        << kTag << " output : " << out_dir << std::endl;
+    log << IcpSlam::kTag << " input  : " << input << "\n"
+        << IcpSlam::kTag << " config : " << cfg_file << (use_hif ? "" : " (--no-hif)") << "\n"
+        << IcpSlam::kTag << " output : " << out_dir << std::endl;
 
     hif::io::CloudWriter cloud({staged.path() + "/slam_map.ply"});
     hif::slam::VoxelMap local(set.map_voxel);
@@ -154,7 +153,7 @@ IcpSlamResult IcpSlam::run(std::ostream& log) const
     MovingInMap moving;
     std::size_t points_in = 0, points_removed = 0, icp_iterations = 0;
     std::size_t not_aligned = 0;  ///< scans whose pose is the guess: too few points for ICP
-    hif::apps::Progress progress(kTag, "aligning", source->knownSize(), o.show_progress);
+    hif::apps::Progress progress(IcpSlam::kTag, "aligning", source->knownSize(), o.show_progress);
     hif::apps::Scan scan;
     for (std::size_t k = 0; source->next(scan); ++k)
     {
@@ -302,26 +301,26 @@ IcpSlamResult IcpSlam::run(std::ostream& log) const
     }
     staged.commit();
 
-    log << std::fixed << std::setprecision(3) << kTag << " scans " << poses.size()
+    log << std::fixed << std::setprecision(3) << IcpSlam::kTag << " scans " << poses.size()
         << ", ms per scan: median " << per_scan.median << " (ICP " << icp_t.median;
     if (use_hif) log << ", HIF " << hif_t.median;
     log << "), p90 " << per_scan.p90 << "\n";
     if (not_aligned > 0)
-        log << kTag << " warning: " << not_aligned << " of " << poses.size() - 1
+        log << IcpSlam::kTag << " warning: " << not_aligned << " of " << poses.size() - 1
             << " scans could not be aligned (fewer than " << kMinIcpPoints
             << " points for ICP, or nothing matched): their poses are the constant-velocity "
                "guess\n";
     if (rmse)
-        log << kTag << " trajectory RMSE against the input's poses: " << rmse_m << " m\n";
+        log << IcpSlam::kTag << " trajectory RMSE against the input's poses: " << rmse_m << " m\n";
     else if (poses.size() < 2)
-        log << kTag << " no trajectory error: the input holds one scan\n";
+        log << IcpSlam::kTag << " no trajectory error: the input holds one scan\n";
     else
-        log << kTag << " no trajectory error: the input has no pose for every scan\n";
+        log << IcpSlam::kTag << " no trajectory error: the input has no pose for every scan\n";
     if (moving.scans_labelled > 0)
-        log << kTag << " labelled moving points that entered the map: " << moving.entered_map
-            << " of " << moving.labelled_moving << " (" << moving.scans_labelled
-            << " labelled scans)\n";
-    log << kTag << " wrote " << out_dir << "/{poses_kitti.txt, slam_map.ply, summary.json"
+        log << IcpSlam::kTag
+            << " labelled moving points that entered the map: " << moving.entered_map << " of "
+            << moving.labelled_moving << " (" << moving.scans_labelled << " labelled scans)\n";
+    log << IcpSlam::kTag << " wrote " << out_dir << "/{poses_kitti.txt, slam_map.ply, summary.json"
         << (use_hif ? ", map.hifmap}" : "}") << "\n";
     IcpSlamResult result;
     result.scans = poses.size();

@@ -36,13 +36,13 @@ namespace
 {
 /** The scans first..last as <dir>/pcd/NNNNNN.pcd, points in the world frame. */
 void writeDynamicMap(const hif::io::KittiSequence& seq, std::size_t first, std::size_t last,
-                     const std::string& dir, bool overwrite, const std::string& tag,
-                     bool show_progress)
+                     const std::string& dir, bool overwrite, bool show_progress)
 {
     hif::apps::StagedFolder staged(hif::apps::cleanDir(dir), {"pcd"}, overwrite, "--overwrite");
     const std::string pcd_dir = staged.path() + "/pcd";
     hif::apps::makeDirs(pcd_dir);
-    hif::apps::Progress progress(tag, "converting", last - first + 1, show_progress);
+    hif::apps::Progress progress(KittiToRawlog::kTag, "converting", last - first + 1,
+                                 show_progress);
     for (std::size_t i = first; i <= last; ++i)
     {
         const hif::io::Cloud scan = seq.readScan(i);
@@ -68,7 +68,6 @@ void writeDynamicMap(const hif::io::KittiSequence& seq, std::size_t first, std::
 KittiToRawlogResult KittiToRawlog::run(std::ostream& log) const
 {
     const KittiToRawlogOptions& o = options_;
-    const std::string tag = "[kitti2rawlog]";
     const hif::io::KittiSequence seq(o.input);
     const std::size_t n = seq.size();
     const auto max_scan = static_cast<long long>(n) - 1;
@@ -97,13 +96,13 @@ KittiToRawlogResult KittiToRawlog::run(std::ostream& log) const
             throw std::runtime_error(
                 "--external, --compress-level, --odometry and --start-time apply to rawlogs, "
                 "not to --dynamicmap");
-        log << tag << " sequence '" << seq.dir() << "': scans " << first << ".." << last << " of "
+        log << kTag << " sequence '" << seq.dir() << "': scans " << first << ".." << last << " of "
             << n << " into the DynamicMap layout '" << out_file << "/pcd'\n";
         hif::apps::RunFiles files;
         files.inputKittiSequence(seq.dir(), "-i");
         files.output(hif::apps::cleanDir(out_file) + "/pcd", "the pcd/ of -o", true);
-        writeDynamicMap(seq, first, last, out_file, o.overwrite, tag, o.show_progress);
-        log << tag << " done: " << (last - first + 1) << " scans\n";
+        writeDynamicMap(seq, first, last, out_file, o.overwrite, o.show_progress);
+        log << kTag << " done: " << (last - first + 1) << " scans\n";
         return {last - first + 1, 0, 0};
     }
     // Never over an input; written aside and renamed when complete: a failed conversion leaves
@@ -130,10 +129,10 @@ KittiToRawlogResult KittiToRawlog::run(std::ostream& log) const
                                          seq.scanFile(i) + "'");
         }
     }
-    log << tag << " sequence '" << seq.dir() << "': scans " << first << ".." << last << " of " << n
+    log << kTag << " sequence '" << seq.dir() << "': scans " << first << ".." << last << " of " << n
         << ", " << total_points << " points"
         << ", labels present and checked for " << labelled << " of them\n"
-        << tag << " writing '" << out_file << "' ("
+        << kTag << " writing '" << out_file << "' ("
         << (o.external ? "points in the KITTI files" : "points inline")
         << (level > 0 ? ", gzip level " + std::to_string(level) : ", uncompressed") << ")\n";
 
@@ -155,7 +154,7 @@ KittiToRawlogResult KittiToRawlog::run(std::ostream& log) const
     auto arch = mrpt::serialization::archiveFrom(*stream);
     const std::string written = "'" + out_file + "'";  // for a failed write
 
-    hif::apps::Progress progress(tag, "converting", last - first + 1, o.show_progress);
+    hif::apps::Progress progress(kTag, "converting", last - first + 1, o.show_progress);
     for (std::size_t i = first; i <= last; ++i)
     {
         // KITTI times are seconds from the start of the sequence.
@@ -205,7 +204,7 @@ KittiToRawlogResult KittiToRawlog::run(std::ostream& log) const
     hif::apps::writeOrThrow(
         written, [&] { stream.reset(); }, /*closing=*/true);
     staged.commit();
-    log << tag << " done: " << (last - first + 1) << " scans\n";
+    log << kTag << " done: " << (last - first + 1) << " scans\n";
     return {last - first + 1, total_points, labelled};
 }
 

@@ -33,7 +33,6 @@ using namespace synth;
 SyntheticKittiResult SyntheticKitti::run(std::ostream& log) const
 {
     const SyntheticKittiOptions& o = options_;
-    const std::string tag = "[hif-synthetic-kitti]";
     const std::string dir = hif::apps::cleanDir(o.output);
     const auto n = static_cast<std::size_t>(hif::apps::flagInRange(o.scans, "--scans", 1, 999999));
     const auto seed = static_cast<std::mt19937::result_type>(
@@ -86,7 +85,7 @@ SyntheticKittiResult SyntheticKitti::run(std::ostream& log) const
     std::ofstream calib(out + "/calib.txt"), poses(out + "/poses.txt"), times(out + "/times.txt");
     calib << "Tr: " << row34(Tr) << "\n";
 
-    hif::apps::Progress progress(tag, "rendering", n, o.show_progress);
+    hif::apps::Progress progress(kTag, "rendering", n, o.show_progress);
     std::vector<Eigen::Vector3d> beams;
     std::size_t total_points = 0, moving_points = 0;
     for (std::size_t i = 0; i < n; ++i)
@@ -135,8 +134,8 @@ SyntheticKittiResult SyntheticKitti::run(std::ostream& log) const
         throw std::runtime_error("calib.txt, poses.txt or times.txt of '" + dir +
                                  "' could not be written (disk full?)");
     staged.commit();
-    log << tag << " sensor " << sensor.name << ": " << sensor.description << "\n";
-    log << tag << " wrote " << n << " scans, " << total_points << " points (" << moving_points
+    log << kTag << " sensor " << sensor.name << ": " << sensor.description << "\n";
+    log << kTag << " wrote " << n << " scans, " << total_points << " points (" << moving_points
         << " on moving objects) to '" << dir << "'\n";
     return {n, total_points, moving_points};
 }

@@ -58,6 +58,9 @@ struct CleanResult
 class Clean
 {
 public:
+    /** What the job's lines and its app's errors start with. */
+    static constexpr const char* kTag = "[hif-clean]";
+
     explicit Clean(CleanOptions options) : options_(std::move(options)) {}
     CleanResult run(std::ostream& log) const;
 

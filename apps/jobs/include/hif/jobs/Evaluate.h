@@ -46,6 +46,9 @@ struct EvaluateResult
 class Evaluate
 {
 public:
+    /** What the job's lines and its app's errors start with. */
+    static constexpr const char* kTag = "[hif-eval]";
+
     explicit Evaluate(EvaluateOptions options) : options_(std::move(options)) {}
     EvaluateResult run(std::ostream& log) const;
 

@@ -42,6 +42,9 @@ struct IcpSlamResult
 class IcpSlam
 {
 public:
+    /** What the job's lines and its app's errors start with. */
+    static constexpr const char* kTag = "[hif-icp-slam]";
+
     explicit IcpSlam(IcpSlamOptions options) : options_(std::move(options)) {}
     IcpSlamResult run(std::ostream& log) const;
 

@@ -45,6 +45,9 @@ struct KittiToRawlogResult
 class KittiToRawlog
 {
 public:
+    /** What the job's lines and its app's errors start with. */
+    static constexpr const char* kTag = "[kitti2rawlog]";
+
     explicit KittiToRawlog(KittiToRawlogOptions options) : options_(std::move(options)) {}
     KittiToRawlogResult run(std::ostream& log) const;
 

@@ -41,6 +41,9 @@ struct SyntheticKittiResult
 class SyntheticKitti
 {
 public:
+    /** What the job's lines and its app's errors start with. */
+    static constexpr const char* kTag = "[hif-synthetic-kitti]";
+
     explicit SyntheticKitti(SyntheticKittiOptions options) : options_(std::move(options)) {}
     SyntheticKittiResult run(std::ostream& log) const;
 
