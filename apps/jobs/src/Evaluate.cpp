@@ -32,14 +32,17 @@ namespace hif::jobs
 {
 namespace
 {
-/** printf's formatting, onto `log`. */
+/** printf's formatting, onto `log`, whole however long (folder names can be). */
 __attribute__((format(printf, 2, 3))) void say(std::ostream& log, const char* format, ...)
 {
-    char line[1024];
-    va_list args;
+    va_list args, again;
     va_start(args, format);
-    std::vsnprintf(line, sizeof line, format, args);
+    va_copy(again, args);
+    const int n = std::vsnprintf(nullptr, 0, format, args);
     va_end(args);
+    std::string line(n > 0 ? static_cast<std::size_t>(n) : 0, '\0');
+    if (n > 0) std::vsnprintf(line.data(), line.size() + 1, format, again);
+    va_end(again);
     log << line;
 }
 
