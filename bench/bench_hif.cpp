@@ -164,20 +164,23 @@ std::pair<hif::GridGeometry, hif::Params> offlineConfig()
 }
 
 /** Insertion with the offline configuration, read from share/hif/config/kitti.ini (see-through
- *  misses, p_empty_init 0.42; its free-space test is part of classification). The difference
- *  to BM_Insert is the cost of the see-through misses. Argument: threads. */
+ *  misses, p_empty_init 0.42, ground seen once; its free-space test is part of
+ *  classification). The difference to BM_Insert is the cost of the see-through misses and the
+ *  ground test. Arguments: threads, and ground 0 to turn the ground test off (its cost). */
 void BM_InsertOfflineConfig(benchmark::State& state)
 {
     if (!haveScans(state)) return;
-    const auto [geometry, params] = offlineConfig();
+    auto [geometry, params] = offlineConfig();
+    if (state.range(1) == 0) params.ground_max_slope_deg = 0.0;
     hif::PillarGrid g(geometry, params);
     g.setThreads(static_cast<std::size_t>(state.range(0)));
     insertInSequence(state, g);
 }
 BENCHMARK(BM_InsertOfflineConfig)
-    ->ArgName("threads")
-    ->Arg(1)
-    ->Arg(2)
+    ->ArgNames({"threads", "ground"})
+    ->Args({1, 1})
+    ->Args({1, 0})
+    ->Args({2, 1})
     ->Unit(benchmark::kMillisecond);
 
 /** The steps of one insertion, each timed alone on the same scans and the same growing map:

@@ -230,15 +230,16 @@ TEST(RealKittiOnline, OnlineCleaningMeetsTheFloors)
 
 // KITTI 04 with every 2nd and every 4th ring (about an HDL-32E's and a VLP-16's spacing): the
 // copies hold their rings and labels, and are cleaned. The floors are a little under today's
-// figures (misses where beams passed; 32 rings: SA 98.14, AA 95.15; 16 rings: SA 95.84, AA
-// 91.92), as a guard against regressions on the way to issue 20's SA >= 98.
+// figures (misses where beams passed, ground seen once kept; 32 rings: SA 98.46, AA 95.08; 16
+// rings: SA 97.24, AA 92.04; without ground_max_slope_deg 16 rings give SA 95.81), as a guard
+// against regressions on the way to issue 20's SA >= 98.
 TEST(RealKittiRings, SparserCopiesOf04KeepTheirRingsAndLabelsAndAreCleaned)
 {
     const std::string dir = hif::test::kittiRoot() + "/sequences/04";
     HIF_REQUIRE_KITTI_SEQUENCE(dir);
     const WorkDir work = workDir("kitti04_rings");
     for (const auto& [k, sa_floor, aa_floor] :
-         {std::tuple{2, 98.0, 94.8}, std::tuple{4, 95.7, 91.7}})
+         {std::tuple{2, 98.3, 94.8}, std::tuple{4, 97.0, 91.8}})
     {
         SCOPED_TRACE(k);
         const std::string seq = work.path() + "/every" + std::to_string(k);

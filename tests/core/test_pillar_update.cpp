@@ -757,3 +757,83 @@ TEST(SeeThroughMisses, RingsThatReturnedNothingWhereAHeightSeenOnceWasShowItGone
     grid.insertScan({x.data(), y.data(), z.data(), x.size()});
     EXPECT_TRUE(grid.isStatic(20.5, 0.5, 0.7));
 }
+
+namespace
+{
+/** One scan of a 16-ring LiDAR (rings every 2 degrees from -15 to +15, 0.2 degrees apart in
+ *  azimuth) 1.7 m above flat ground, over azimuths -10 to +10 degrees, with a car's rear (a
+ *  face at x = 20.05 m, y within 1 m, up to 1.5 m above the ground) and a raised platform (1 m
+ *  high, from x = 18 m to 45 m, at azimuths 6 to 10 degrees); a wall 100 m away stops the
+ *  beams above. Is each of `probes` static once the scan is inserted with
+ *  ground_max_slope_deg `slope`? */
+std::vector<bool> staticAfterOneSparseScan(double slope, const std::vector<Eigen::Vector3d>& probes)
+{
+    std::vector<double> el;
+    for (int e = -15; e <= 15; e += 2) el.push_back(e);
+    const SensorModel model = SensorModel::fromBeams(el, 0.2);
+    Params prm;
+    prm.p_empty_init = 0.42;  // offline: a height seen once needs a second sighting
+    prm.ground_max_slope_deg = slope;
+    PillarGrid grid(GridGeometry(), prm);
+    grid.setSensorModel(model);
+    std::vector<float> x, y, z;
+    for (int a = -50; a <= 50; ++a)
+    {
+        const double az = a * 0.2 * M_PI / 180.0;
+        for (const double e_deg : el)
+        {
+            const double t = std::tan(e_deg * M_PI / 180.0);
+            // Horizontal distance at which the beam meets each surface (inf: never).
+            double d = 100.0 / std::cos(az);  // the wall
+            if (t < 0) d = std::min(d, 1.7 / -t);
+            const double car = 20.05 / std::cos(az);
+            if (std::abs(20.05 * std::tan(az)) < 1.0 && car * t >= -1.7 && car * t <= -0.2)
+                d = std::min(d, car);
+            if (a >= 30)
+            {
+                const double face = 18.0 / std::cos(az), top = t < 0 ? 0.7 / -t : 1e9;
+                if (face * t >= -1.7 && face * t <= -0.7) d = std::min(d, face);
+                if (top * std::cos(az) >= 18.0 && top * std::cos(az) <= 45.0) d = std::min(d, top);
+            }
+            x.push_back(float(d * std::cos(az)));
+            y.push_back(float(d * std::sin(az)));
+            z.push_back(float(d * t));
+        }
+    }
+    grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+    std::vector<bool> out;
+    for (const Eigen::Vector3d& p : probes) out.push_back(grid.isStatic(p.x(), p.y(), p.z()));
+    return out;
+}
+}  // namespace
+
+// A sparse LiDAR crosses ground 32 m away with one ring in one scan; offline settings
+// (p_empty_init 0.42) want a second sighting of every height, which that ground never gets in a
+// short clip. Ground that runs on both ways along its beams is kept after one. What stands on
+// the ground still needs a second sighting: a car (the beam below returns from its foot at the
+// same distance), the road at its foot (the beam above returns from the car 0.6 m behind, not
+// farther along the road) and a raised platform (the face below it breaks the run down to the
+// sensor, though the one beam below looks level with its top).
+TEST(GroundSeenOnce, AFloorThatRunsOnBothWaysIsKeptWhatStandsOnItIsNot)
+{
+    const auto rad = [](double deg) { return deg * M_PI / 180.0; };
+    const double ground = 1.7 / std::tan(rad(3.0));  // ring -3: 32.4 m
+    const double foot = 1.7 / std::tan(rad(5.0));    // ring -5: 19.4 m, before the car
+    const double top = 0.7 / std::tan(rad(1.0));     // ring -1 on the platform: 40.1 m
+    const std::vector<Eigen::Vector3d> probes{
+        {ground * std::cos(rad(-5.0)), ground * std::sin(rad(-5.0)), -1.7},
+        {foot, 0.0, -1.7},                                           // the road at the car's foot
+        {20.1, 0.0, -1.05},                                          // the car (ring -3)
+        {20.1, 0.0, -0.35},                                          // the car (ring -1)
+        {top * std::cos(rad(8.0)), top * std::sin(rad(8.0)), -0.7},  // the platform's top
+    };
+    const std::vector<bool> on = staticAfterOneSparseScan(5.0, probes);
+    const std::vector<bool> off = staticAfterOneSparseScan(0.0, probes);
+    EXPECT_TRUE(on[0]) << "ground seen once, running on both ways";
+    EXPECT_FALSE(off[0]) << "without the rule, it needs a second sighting";
+    for (std::size_t k = 1; k < probes.size(); ++k)
+    {
+        EXPECT_FALSE(on[k]) << "probe " << k;
+        EXPECT_FALSE(off[k]) << "probe " << k;
+    }
+}

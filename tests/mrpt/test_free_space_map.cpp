@@ -151,8 +151,9 @@ TEST(FreeSpaceMap, OnlineEachScanIsClassifiedRightAfterItsInsertion)
 }
 
 // The same with the offline config: kitti.ini's first sighting of a height is dynamic until a
-// later scan confirms it, so scan 0 classified right after its insertion comes out (nearly)
-// all dynamic. The map knows it is offline and says what to do instead.
+// later scan confirms it (but for ground that runs on both ways along its beams), so scan 0
+// classified right after its insertion comes out mostly dynamic. The map knows it is offline
+// and says what to do instead.
 TEST(FreeSpaceMap, AnOfflineMapClassifyingAsScansComeSaysSo)
 {
     const std::string dir = hif::test::kittiRoot() + "/sequences/04";
@@ -163,7 +164,7 @@ TEST(FreeSpaceMap, AnOfflineMapClassifyingAsScansComeSaysSo)
     m.multi.insertObservation(*clip.scans[0], clip.poses[0]);
     std::vector<uint8_t> dyn;
     m.map->classify(*clip.scans[0], clip.poses[0], dyn);
-    EXPECT_GT(dynamicCount(dyn), dyn.size() * 9 / 10);
+    EXPECT_GT(dynamicCount(dyn), dyn.size() * 3 / 4);
     EXPECT_NE(m.log().find("offline map (online=false) classified a scan without the scans "
                            "around it"),
               std::string::npos)

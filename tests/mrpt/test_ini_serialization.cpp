@@ -377,8 +377,9 @@ TEST(CHeightIntervalMapIni, ShippedKittiConfigsLoadTheDocumentedDefaults)
         const auto map = multi.mapByClass<CHeightIntervalMap>();
         ASSERT_TRUE(map) << name;
         // They differ from hif::Params() in what doc/algorithm.md measures: the see-through
-        // misses and the free-space test; offline, the mode, p_empty_init and a higher share
-        // for the test; online, a lower one; the DynamicMap layout, a minimum range too.
+        // misses and the free-space test; offline, the mode, p_empty_init, ground seen once and
+        // a higher share for the test; online, a lower one; the DynamicMap layout, a minimum
+        // range too.
         hif::Params expected;
         expected.free_space_window = 10;
         expected.free_space_fraction = 0.4;
@@ -388,6 +389,7 @@ TEST(CHeightIntervalMapIni, ShippedKittiConfigsLoadTheDocumentedDefaults)
         {
             expected.online = false;
             expected.p_empty_init = 0.42;
+            expected.ground_max_slope_deg = 5.0;
             expected.free_space_fraction = 0.7;
         }
         if (name == "dynamicmap.ini") expected.min_range = 3.0;

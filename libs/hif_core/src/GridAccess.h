@@ -6,6 +6,7 @@
  */
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -31,6 +32,10 @@ struct Workspace
     std::vector<BeamReturn> range_image;       ///< the scan's returns (miss gates)
     std::vector<uint8_t> returned_blocks;      ///< of range_image (buildReturnImage())
     std::vector<uint8_t> hit;                  ///< see-through misses: pillars the scan hit
+    /** BeamGate::runs of the scan's image (ground seen once), and the scan's generation. */
+    std::unique_ptr<std::atomic<uint16_t>[]> ground_runs;
+    std::size_t ground_runs_cells = 0;
+    uint16_t ground_generation = 0;
 
     /** Scan buffers of classify() (const, and may run concurrently): each call takes one, or
      *  a new one, and gives it back; they are freed with the grid. */

@@ -8,6 +8,7 @@
 #include "RangeImage.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <limits>
 
@@ -24,6 +25,8 @@ LogOddsModel LogOddsModel::fromParams(const Params& p)
     m.lhp = p.low_height_preservation;
     m.hhp = p.high_height_preservation;
     m.unseen_prior = p.unseen_height_prior;
+    m.ground_slope_tan = std::tan(p.ground_max_slope_deg * M_PI / 180.0);
+    m.ground_step = p.ground_max_step;
     return m;
 }
 
@@ -123,6 +126,7 @@ void PillarUpdater::update(Pillar& g, const Span* t, std::size_t nt, int32_t cei
     // [x, next) coverage by g and by t is constant, so each step is one h_k^new of Eq. 10, and
     // it lies inside at most one g interval and one t span (Eq. 11 sets have <= 1 element).
     std::size_t i = 0, j = 0;
+    int ground = -1;  // whether t[0] lies on the ground (BeamGate::onGround()): not asked yet
     int64_t x = std::numeric_limits<int64_t>::max();
     if (ng > 0) x = gi[0].lo;
     if (nt > 0) x = std::min<int64_t>(x, t[0].lo);
@@ -166,11 +170,21 @@ void PillarUpdater::update(Pillar& g, const Span* t, std::size_t nt, int32_t cei
                 emit(lo, hi, gi[i].logodds + model.miss);  // Eq. 13: expected, not seen
         }
         else if (in_t)
+        {
             // Eq. 14: new, prior p_empty; unseen-height prior: p_empty_init where no scan
             // could look before.
-            emit(lo, hi,
-                 (model.unseen_prior && lo >= seen_top ? model.empty_init : empty_prior) +
-                     model.hit);
+            float prior = model.unseen_prior && lo >= seen_top ? model.empty_init : empty_prior;
+            // Ground floors: no prior against a surface that does not move (neutral, 0.5);
+            // asked once per pillar, and only where a new piece of the floor arises.
+            if (j == 0 && gate && model.ground_slope_tan > 0.0)
+            {
+                if (ground < 0)
+                    ground =
+                        gate->onGround(t[0].lo, t[0].hi, model.ground_slope_tan, model.ground_step);
+                if (ground == 1) prior = std::max(prior, 0.0f);
+            }
+            emit(lo, hi, prior + model.hit);
+        }
         // neither: not covered by any observation, discarded.
         x = next;
     }

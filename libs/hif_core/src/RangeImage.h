@@ -7,6 +7,7 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -295,6 +296,50 @@ struct BeamGate
         if (!out.empty()) out.resize(w + 1);
     }
 
+    /** Whether the floor [lo, hi) the scan saw in this pillar is ground (Params::
+     *  ground_max_slope_deg): every return of the scan within the pillar at those heights (and
+     *  at least one) lies on a surface that runs on, nearly level, both ways along its
+     *  direction. The next beam above returned farther, at most `slope_tan` per metre higher
+     *  or lower; and the beams below it, one after the other down to the lowest that
+     *  returned, each returned nearer, at most `slope_tan` per metre (plus `step` metres, a
+     *  kerb, below the first) lower or higher than the one above it. Ground is sampled that
+     *  way, at grazing angles; whatever stands on it breaks the run: its face returns at nearly
+     *  the same distance as its foot (the beam above a car's lowest point hits the car), and a
+     *  roof is separated from the ground below by the face under it. A beam that returned
+     *  nothing where the run continues leaves the question open: not ground. Needs `runs`. */
+    [[nodiscard]] bool onGround(int32_t lo, int32_t hi, double slope_tan, double step) const
+    {
+        Axis a;
+        if (!runs || !axisOf(lo, hi, a)) return false;
+        const RangeImageLayout& l = *layout;
+        bool any = false;
+        // The pillar's extent along the beams reaches a row beyond its axis's on each side.
+        for (int row = std::max(0, a.row0 - 1); row <= std::min(l.rows - 1, a.row1 + 1); ++row)
+            for (int k = 0; k < a.ncols; ++k)
+            {
+                const Found p = at(row, a.cols[k]);
+                if (!p.found) continue;
+                const double z = (sensor_z + p.place.up) / res;
+                if (std::abs(p.place.along - a.d) > reach || z < lo || z >= hi) continue;
+                const Found above = nextReturn(p, 1);
+                if (!above.found || !levelWith(above.place, p.place, slope_tan, 0.0)) return false;
+                const Found below = nextReturn(p, -1);
+                if (below.found ? !levelWith(p.place, below.place, slope_tan, 0.0) ||
+                                      !runDownIsLevel(below, slope_tan, step)
+                                : gapBelow(p))
+                    return false;
+                any = true;
+            }
+        return any;
+    }
+
+    /** For onGround(): per cell of the image, whether the run of returns from the cell's down
+     *  to the column's lowest is level (runDownIsLevel()), found once per scan: the cell's
+     *  value is (generation << 2) | 1 (level) or 2 (broken); another generation is unknown.
+     *  Atomic: the gates of one scan run on several threads, and find the same values. */
+    std::atomic<uint16_t>* runs = nullptr;
+    uint16_t generation = 0;
+
 private:
     /** Where the pillar's axis lies in the image between two heights. */
     struct Axis
@@ -426,6 +471,108 @@ private:
                     return far;
                 }
         return ret;
+    }
+
+    /** A return placed along its column's direction: horizontal distance and height above
+     *  the sensor (world frame), metres; with its cell. */
+    struct Place
+    {
+        double along = 0.0;
+        double up = 0.0;
+    };
+    struct Found
+    {
+        Place place;
+        int row = 0, col = 0;
+        bool found = false;
+    };
+    /** The return in cell (row, col), placed, or none. */
+    [[nodiscard]] Found at(int row, int col) const
+    {
+        const BeamReturn& ret = rowOf(row)[col];
+        if (ret.range_cm == BeamReturn::kNone) return {};
+        // The column's azimuth from its pseudo-azimuth (pseudoAzimuth() inverted).
+        const double paz = (col + 0.5) * (4.0 / layout->cols);
+        const double q = paz - std::floor(paz);
+        double x = 0.0, y = 0.0;
+        if (paz < 1.0)
+            x = 1.0 - q, y = q;
+        else if (paz < 2.0)
+            x = -q, y = 1.0 - q;
+        else if (paz < 3.0)
+            x = q - 1.0, y = -q;
+        else
+            x = q, y = q - 1.0;
+        const double t = ret.tan();
+        const double s = ret.range() / std::sqrt((1.0 + t * t) * (x * x + y * y));
+        const Eigen::Vector3d p(s * x, s * y, s * std::sqrt(x * x + y * y) * t);
+        const double h = p.dot(up);
+        return {{std::sqrt(std::max(0.0, p.squaredNorm() - h * h)), h}, row, col, true};
+    }
+    /** The next beam's return above (dir 1) or below (dir -1) `from`: the first within 1.5
+     *  vertical spacings (bridge_tan), in its column or a neighbouring one (a beam's returns
+     *  fill every other column). */
+    [[nodiscard]] Found nextReturn(const Found& from, int dir) const
+    {
+        const RangeImageLayout& l = *layout;
+        const int rows = std::max(1, static_cast<int>(std::ceil(bridge_tan / l.tan_res)));
+        const int last = std::clamp(from.row + dir * rows, 0, l.rows - 1);
+        for (int r = from.row + dir; dir > 0 ? r <= last : r >= last; r += dir)
+            for (const int dc : {0, -1, 1})
+            {
+                const Found f = at(r, (from.col + dc + l.cols) % l.cols);
+                if (f.found) return f;
+            }
+        return {};
+    }
+    /** With no next beam's return below `from`: whether its column holds one lower down (a
+     *  beam that returned nothing within the run), rather than `from` being the lowest. */
+    [[nodiscard]] bool gapBelow(const Found& from) const
+    {
+        const int rows = std::max(1, static_cast<int>(std::ceil(bridge_tan / layout->tan_res)));
+        for (int r = std::min(from.row - rows - 1, layout->rows - 1); r >= 0; --r)
+            if (rowOf(r)[from.col].range_cm != BeamReturn::kNone) return true;
+        return false;
+    }
+    /** Whether the returns from `from` down, one beam after the other, each lie nearer than the
+     *  one above and within `slope_tan` per metre plus `step` of it, down to the column's
+     *  lowest (no gap). Every cell walked shares the answer, which `runs` keeps. */
+    [[nodiscard]] bool runDownIsLevel(Found from, double slope_tan, double step) const
+    {
+        const auto cell = [&](const Found& f)
+        { return static_cast<std::size_t>(f.row) * layout->cols + f.col; };
+        constexpr int kKept = 64;  // cells remembered per walk (the rest are walked again)
+        std::size_t walked[kKept];
+        int n = 0;
+        bool level = false;
+        for (;;)
+        {
+            const uint16_t v = runs[cell(from)].load(std::memory_order_relaxed);
+            if (v >> 2 == generation)
+            {
+                level = (v & 3) == 1;
+                break;
+            }
+            if (n < kKept) walked[n++] = cell(from);
+            const Found below = nextReturn(from, -1);
+            if (!below.found)
+            {
+                level = !gapBelow(from);
+                break;
+            }
+            if (!levelWith(from.place, below.place, slope_tan, step)) break;
+            from = below;
+        }
+        const auto v = static_cast<uint16_t>((generation << 2) | (level ? 1 : 2));
+        for (int k = 0; k < n; ++k) runs[walked[k]].store(v, std::memory_order_relaxed);
+        return level;
+    }
+    /** `far` lies farther than `near` and at most `slope_tan` per metre plus `step` metres
+     *  above or below it. */
+    static bool levelWith(const Place& far, const Place& near, double slope_tan, double step)
+    {
+        const double run = far.along - near.along;
+        return run > 0.0 && std::abs(far.up - near.up) <= run * slope_tan + step;
     }
 
     [[nodiscard]] const BeamReturn* rowOf(int row) const

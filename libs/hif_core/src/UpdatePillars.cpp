@@ -32,24 +32,44 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
     constexpr int kHalfCols = 1;
     const double bridge = neighbourBeamsTan(grid);
     const float seen_once = seenOnce(grid);
+    // Ground seen once: the runs down each column, found once per scan (a new generation).
+    if (gated && model.ground_slope_tan > 0.0)
+    {
+        const std::size_t cells = grid.imageLayout().cells();
+        if (ws.ground_runs_cells != cells)
+        {
+            ws.ground_runs.reset(new std::atomic<uint16_t>[cells]());
+            ws.ground_runs_cells = cells;
+            ws.ground_generation = 0;
+        }
+        if (++ws.ground_generation == 1u << 14)  // the values' 14 bits wrap: start afresh
+        {
+            for (std::size_t c = 0; c < cells; ++c)
+                ws.ground_runs[c].store(0, std::memory_order_relaxed);
+            ws.ground_generation = 1;
+        }
+    }
     auto gateOf = [&](std::size_t p)
     {
         const PillarIndex idx = unpackKey(scan.keys[p]);
         const Eigen::Vector3d axis(geo.centreX(idx.m) - scan.sensor.x(),
                                    geo.centreY(idx.n) - scan.sensor.y(), -scan.sensor.z());
-        return BeamGate{&grid.imageLayout(),
-                        ws.range_image.data(),
-                        scan.world_to_sensor * axis,
-                        up,
-                        margin,
-                        geo.height_resolution,
-                        kHalfCols,
-                        pillarReach(geo.pillar_size, axis.x(), axis.y()),
-                        bridge,
-                        &grid,
-                        scan.sensor.z(),
-                        seen_once,
-                        ws.returned_blocks.data()};
+        BeamGate gate{&grid.imageLayout(),
+                      ws.range_image.data(),
+                      scan.world_to_sensor * axis,
+                      up,
+                      margin,
+                      geo.height_resolution,
+                      kHalfCols,
+                      pillarReach(geo.pillar_size, axis.x(), axis.y()),
+                      bridge,
+                      &grid,
+                      scan.sensor.z(),
+                      seen_once,
+                      ws.returned_blocks.data()};
+        gate.runs = ws.ground_runs.get();
+        gate.generation = ws.ground_generation;
+        return gate;
     };
 
     InsertStats st;

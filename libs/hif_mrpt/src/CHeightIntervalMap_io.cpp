@@ -25,8 +25,8 @@ namespace
 /** Version 1 added the see-through options, version 2 the free-space test and the minimum
  *  range (Field::since_version), version 3 the sensor model (its option, and the model after
  *  the pillars), version 4 the `online` option and the free-space test's scans (after the
- *  model); every older version is still read. */
-constexpr uint8_t kSerializationVersion = 4;
+ *  model), version 5 the ground options; every older version is still read. */
+constexpr uint8_t kSerializationVersion = 5;
 /** More beams than any LiDAR has: a larger count in a file is corruption. */
 constexpr uint32_t kMaxBeams = 4096;
 /** A free-space image in a file has the layout of the map's sensor model, and at most this

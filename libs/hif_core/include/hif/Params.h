@@ -99,6 +99,20 @@ struct Params
      *  pattern did not look this time) the map is kept as it is. */
     bool miss_needs_beam = true;
 
+    /** Ground seen once is kept (ours; 0 = off, the paper; needs miss_needs_beam): a new piece
+     *  of a pillar's floor (its lowest interval in the scan) gets the neutral prior 0.5 instead
+     *  of p_empty (Eq. 14), so that one sighting keeps it, when every return of the scan in
+     *  the floor lies on ground: the next beam above returned farther, at most this slope
+     *  (degrees) higher or lower, and the beams below, one after the other down to the lowest,
+     *  each returned nearer, within this slope plus ground_max_step of the one above. With a
+     *  sparse LiDAR, ground tens of metres away is crossed by a beam in one scan only, and
+     *  "needs a second sighting" (p_empty_init < 0.5) removed it; what stands on the ground
+     *  (a car's foot, a roof) breaks the run and still needs a second sighting. */
+    double ground_max_slope_deg = 0.0;
+    /** A step, metres, that the run of ground down to the sensor may take between two beams
+     *  (a kerb), for ground_max_slope_deg. */
+    double ground_max_step = 0.2;
+
     /** Free-space test (ours; 0 = off, the paper): how many scans on each side of a scan
      *  (offline; online: before it) may show that its points were not there. A point was not
      *  there at the time of another scan when that scan's beam toward it, from nearly the same
@@ -151,7 +165,7 @@ struct Params
     std::size_t max_intervals_per_pillar = 16;
 
     /** The fields, for loops over them (see FieldTable.h). */
-    [[nodiscard]] static const std::array<Field<Params>, 27>& fields();
+    [[nodiscard]] static const std::array<Field<Params>, 29>& fields();
 
     /** The paper's method as written: the additions above (HHP, the unseen-height prior,
      *  range-adaptive intervals, the sensor model, misses that need a beam; see-through misses
@@ -173,10 +187,10 @@ struct Params
 static_assert(memberCount<Params>() == std::tuple_size_v<std::decay_t<decltype(Params::fields())>>,
               "every member of hif::Params needs its row in Params::fields()");
 
-inline const std::array<Field<Params>, 27>& Params::fields()
+inline const std::array<Field<Params>, 29>& Params::fields()
 {
     using P = Params;
-    static const std::array<Field<P>, 27> table{{
+    static const std::array<Field<P>, 29> table{{
         {"merge_gap", &P::merge_gap, Bounds::atLeast(0), 0,
          "Max gap between heights of one interval [m]"},
         {"interval_padding", &P::interval_padding, Bounds::atLeast(0), 0,
@@ -224,6 +238,11 @@ inline const std::array<Field<Params>, 27>& Params::fields()
          "Eq. 13 misses only where a beam of the scan passed (not in the paper)"},
         {"sensor_from_scans", &P::sensor_from_scans, Bounds::any(), 3,
          "Estimate the LiDAR's beams and resolution from the scans (not in the paper)"},
+        {"ground_max_slope_deg", &P::ground_max_slope_deg, Bounds::closedOpen(0, 45), 5,
+         "Floors on ground seen once are kept: the ground's max slope [deg], 0 = off (not in "
+         "the paper)"},
+        {"ground_max_step", &P::ground_max_step, Bounds::atLeast(0), 5,
+         "The step the ground may take between two beams (a kerb) [m]"},
         {"static_threshold", &P::static_threshold, Bounds::open(0, 1), 0,
          "Static when P(static) >= this"},
         {"max_intervals_per_pillar", &P::max_intervals_per_pillar, Bounds::atLeast(1), 0,

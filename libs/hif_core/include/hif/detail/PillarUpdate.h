@@ -47,6 +47,9 @@ struct LogOddsModel
     bool lhp = true;
     bool hhp = true;
     bool unseen_prior = true;
+    /** Params::ground_max_slope_deg as a tangent (0: off) and Params::ground_max_step. */
+    double ground_slope_tan = 0.0;
+    double ground_step = 0.0;
 
     [[nodiscard]] static LogOddsModel fromParams(const Params& p);
     [[nodiscard]] float clamp(float l) const { return l < lmin ? lmin : (l > lmax ? lmax : l); }
