@@ -761,11 +761,13 @@ TEST(SeeThroughMisses, RingsThatReturnedNothingWhereAHeightSeenOnceWasShowItGone
 namespace
 {
 /** One scan of a 16-ring LiDAR (rings every 2 degrees from -15 to +15, 0.2 degrees apart in
- *  azimuth) 1.7 m above flat ground, over azimuths -10 to +10 degrees, with a car's rear (a
- *  face at x = 20.05 m, y within 1 m, up to 1.5 m above the ground) and a raised platform (1 m
- *  high, from x = 18 m to 45 m, at azimuths 6 to 10 degrees); a wall 100 m away stops the
- *  beams above. Is each of `probes` static once the scan is inserted with
- *  ground_max_slope_deg `slope`? */
+ *  azimuth) kSensorZ above flat ground (ring -5 lands at 19.9 m), over azimuths -10 to +10
+ *  degrees, with a car's rear (a face at x = 20.1 m, y within 1 m, up to 1.5 m above the
+ *  ground), a raised platform (1 m high, from x = 18 m to 50 m, at azimuths 6 to 10 degrees)
+ *  and a wall at x = 16 m (azimuths -10 to -6 degrees); a wall 100 m away stops the beams above.
+ *  Is each of `probes` static once the scan is inserted with ground_max_slope_deg `slope`? */
+constexpr double kSensorZ = 1.7410;  // 19.9 m * tan(5 degrees)
+
 std::vector<bool> staticAfterOneSparseScan(double slope, const std::vector<Eigen::Vector3d>& probes)
 {
     std::vector<double> el;
@@ -777,25 +779,30 @@ std::vector<bool> staticAfterOneSparseScan(double slope, const std::vector<Eigen
     PillarGrid grid(GridGeometry(), prm);
     grid.setSensorModel(model);
     std::vector<float> x, y, z;
+    const double ground = -kSensorZ;
     for (int a = -50; a <= 50; ++a)
     {
-        const double az = a * 0.2 * M_PI / 180.0;
+        const double az = a * 0.2 * M_PI / 180.0, c = std::cos(az);
         for (const double e_deg : el)
         {
             const double t = std::tan(e_deg * M_PI / 180.0);
-            // Horizontal distance at which the beam meets each surface (inf: never).
-            double d = 100.0 / std::cos(az);  // the wall
-            if (t < 0) d = std::min(d, 1.7 / -t);
-            const double car = 20.05 / std::cos(az);
-            if (std::abs(20.05 * std::tan(az)) < 1.0 && car * t >= -1.7 && car * t <= -0.2)
-                d = std::min(d, car);
-            if (a >= 30)
+            // Horizontal distance along the beam to the first surface it meets.
+            double d = 100.0 / c;  // the far wall
+            if (t < 0) d = std::min(d, ground / t);
+            const auto face = [&](double at, double z0, double z1)
             {
-                const double face = 18.0 / std::cos(az), top = t < 0 ? 0.7 / -t : 1e9;
-                if (face * t >= -1.7 && face * t <= -0.7) d = std::min(d, face);
-                if (top * std::cos(az) >= 18.0 && top * std::cos(az) <= 45.0) d = std::min(d, top);
+                const double r = at / c;
+                if (r * t >= z0 && r * t <= z1) d = std::min(d, r);
+            };
+            if (std::abs(20.1 * std::tan(az)) < 1.0) face(20.1, ground, ground + 1.5);  // the car
+            if (a >= 30)  // the platform: its face, then its top
+            {
+                face(18.0, ground, ground + 1.0);
+                const double top = t < 0 ? (ground + 1.0) / t : 1e9;
+                if (top * c >= 18.0 && top * c <= 50.0) d = std::min(d, top);
             }
-            x.push_back(float(d * std::cos(az)));
+            if (a <= -30) face(16.0, ground, 5.0);  // the wall
+            x.push_back(float(d * c));
             y.push_back(float(d * std::sin(az)));
             z.push_back(float(d * t));
         }
@@ -807,31 +814,40 @@ std::vector<bool> staticAfterOneSparseScan(double slope, const std::vector<Eigen
 }
 }  // namespace
 
-// A sparse LiDAR crosses ground 32 m away with one ring in one scan; offline settings
+// A sparse LiDAR crosses ground 33 m away with one ring in one scan; offline settings
 // (p_empty_init 0.42) want a second sighting of every height, which that ground never gets in a
-// short clip. Ground that runs on both ways along its beams is kept after one. What stands on
-// the ground still needs a second sighting: a car (the beam below returns from its foot at the
-// same distance), the road at its foot (the beam above returns from the car 0.6 m behind, not
-// farther along the road) and a raised platform (the face below it breaks the run down to the
-// sensor, though the one beam below looks level with its top).
+// short clip. Ground that runs on both ways along its beams is kept after one, and so is ground
+// before a wall (the beam above returns higher, but beyond the pillar). What stands on the
+// ground still needs a second sighting: a car (the beam below returns from its foot at the
+// same distance), the road at its foot (the beam above returns from the car 0.2 m behind,
+// within the pillar), a raised platform (the face below it breaks the run down to the sensor,
+// though the one beam below looks level with its top); and so does the padding above the
+// ground, where nothing was seen.
 TEST(GroundSeenOnce, AFloorThatRunsOnBothWaysIsKeptWhatStandsOnItIsNot)
 {
     const auto rad = [](double deg) { return deg * M_PI / 180.0; };
-    const double ground = 1.7 / std::tan(rad(3.0));  // ring -3: 32.4 m
-    const double foot = 1.7 / std::tan(rad(5.0));    // ring -5: 19.4 m, before the car
-    const double top = 0.7 / std::tan(rad(1.0));     // ring -1 on the platform: 40.1 m
+    const double far = kSensorZ / std::tan(rad(3.0));          // ring -3: 33.2 m
+    const double wall = kSensorZ / std::tan(rad(7.0));         // ring -7: 14.2 m, before the wall
+    const double top = (kSensorZ - 1.0) / std::tan(rad(1.0));  // ring -1 on the platform
+    const auto at = [&](double d, double az_deg, double z)
+    { return Eigen::Vector3d(d * std::cos(rad(az_deg)), d * std::sin(rad(az_deg)), z); };
     const std::vector<Eigen::Vector3d> probes{
-        {ground * std::cos(rad(-5.0)), ground * std::sin(rad(-5.0)), -1.7},
-        {foot, 0.0, -1.7},                                           // the road at the car's foot
-        {20.1, 0.0, -1.05},                                          // the car (ring -3)
-        {20.1, 0.0, -0.35},                                          // the car (ring -1)
-        {top * std::cos(rad(8.0)), top * std::sin(rad(8.0)), -0.7},  // the platform's top
+        at(far, -5.0, -kSensorZ),       // ground, far
+        at(wall, -8.0, -kSensorZ),      // ground before the wall
+        at(19.9, 0.0, -kSensorZ),       // the road at the car's foot
+        at(20.15, 0.0, -1.05),          // the car (ring -3)
+        at(20.15, 0.0, -0.35),          // the car (ring -1)
+        at(top, 8.0, 1.0 - kSensorZ),   // the platform's top
+        at(far, -5.0, 0.4 - kSensorZ),  // 0.4 m above the far ground: its padding
     };
     const std::vector<bool> on = staticAfterOneSparseScan(5.0, probes);
     const std::vector<bool> off = staticAfterOneSparseScan(0.0, probes);
-    EXPECT_TRUE(on[0]) << "ground seen once, running on both ways";
-    EXPECT_FALSE(off[0]) << "without the rule, it needs a second sighting";
-    for (std::size_t k = 1; k < probes.size(); ++k)
+    for (std::size_t k = 0; k < 2; ++k)
+    {
+        EXPECT_TRUE(on[k]) << "probe " << k << ": ground seen once";
+        EXPECT_FALSE(off[k]) << "probe " << k << ": without the rule, a second sighting";
+    }
+    for (std::size_t k = 2; k < probes.size(); ++k)
     {
         EXPECT_FALSE(on[k]) << "probe " << k;
         EXPECT_FALSE(off[k]) << "probe " << k;

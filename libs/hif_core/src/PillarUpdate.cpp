@@ -174,14 +174,24 @@ void PillarUpdater::update(Pillar& g, const Span* t, std::size_t nt, int32_t cei
             // Eq. 14: new, prior p_empty; unseen-height prior: p_empty_init where no scan
             // could look before.
             float prior = model.unseen_prior && lo >= seen_top ? model.empty_init : empty_prior;
-            // Ground floors: no prior against a surface that does not move (neutral, 0.5);
-            // asked once per pillar, and only where a new piece of the floor arises.
+            // Ground floors: no prior against a surface that does not move (neutral, 0.5) where
+            // it was seen (the floor's core: its padding is a guess around it, where a car's
+            // lower half may stand); asked once per pillar, only where a new piece arises.
             if (j == 0 && gate && model.ground_slope_tan > 0.0)
             {
                 if (ground < 0)
                     ground =
                         gate->onGround(t[0].lo, t[0].hi, model.ground_slope_tan, model.ground_step);
-                if (ground == 1) prior = std::max(prior, 0.0f);
+                if (ground == 1)
+                {
+                    const Span c = gate->widthsOf(t[0].lo, t[0].hi).core(t[0].lo, t[0].hi);
+                    const int32_t a = std::clamp(c.lo, lo, hi), b = std::clamp(c.hi, a, hi);
+                    if (a > lo) emit(lo, a, prior + model.hit);
+                    if (b > a) emit(a, b, std::max(prior, 0.0f) + model.hit);
+                    if (hi > b) emit(b, hi, prior + model.hit);
+                    x = next;
+                    continue;
+                }
             }
             emit(lo, hi, prior + model.hit);
         }

@@ -299,14 +299,16 @@ struct BeamGate
     /** Whether the floor [lo, hi) the scan saw in this pillar is ground (Params::
      *  ground_max_slope_deg): every return of the scan within the pillar at those heights (and
      *  at least one) lies on a surface that runs on, nearly level, both ways along its
-     *  direction. The next beam above returned farther, at most `slope_tan` per metre higher
-     *  or lower; and the beams below it, one after the other down to the lowest that
-     *  returned, each returned nearer, at most `slope_tan` per metre (plus `step` metres, a
-     *  kerb, below the first) lower or higher than the one above it. Ground is sampled that
-     *  way, at grazing angles; whatever stands on it breaks the run: its face returns at nearly
-     *  the same distance as its foot (the beam above a car's lowest point hits the car), and a
-     *  roof is separated from the ground below by the face under it. A beam that returned
-     *  nothing where the run continues leaves the question open: not ground. Needs `runs`. */
+     *  direction. The next beam above returned farther: at most `slope_tan` per metre higher
+     *  or lower (the ground goes on), or beyond the pillar and not lower (something rises
+     *  there: a fence, a bank, bushes); and the beams below it, one after the other down to the
+     *  lowest that returned, each returned nearer, at most `slope_tan` per metre (plus `step`
+     *  metres, a kerb, below the first) lower or higher than the one above it. Ground is
+     *  sampled that way, at grazing angles; whatever stands on it breaks the run: its face
+     *  returns at nearly the same distance as its foot (the beam above a car's lowest point
+     *  hits the car, within the pillar), and a roof is separated from the ground below by the
+     *  face under it. A beam that returned nothing where the run continues leaves the question
+     *  open: not ground. Needs `runs`. */
     [[nodiscard]] bool onGround(int32_t lo, int32_t hi, double slope_tan, double step) const
     {
         Axis a;
@@ -322,7 +324,10 @@ struct BeamGate
                 const double z = (sensor_z + p.place.up) / res;
                 if (std::abs(p.place.along - a.d) > reach || z < lo || z >= hi) continue;
                 const Found above = nextReturn(p, 1);
-                if (!above.found || !levelWith(above.place, p.place, slope_tan, 0.0)) return false;
+                if (!above.found ||
+                    !(levelWith(above.place, p.place, slope_tan, 0.0) ||
+                      (above.place.along - p.place.along > reach && above.place.up >= p.place.up)))
+                    return false;
                 const Found below = nextReturn(p, -1);
                 if (below.found ? !levelWith(p.place, below.place, slope_tan, 0.0) ||
                                       !runDownIsLevel(below, slope_tan, step)

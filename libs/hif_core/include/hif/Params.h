@@ -101,10 +101,11 @@ struct Params
 
     /** Ground seen once is kept (ours; 0 = off, the paper; needs miss_needs_beam): a new piece
      *  of a pillar's floor (its lowest interval in the scan) gets the neutral prior 0.5 instead
-     *  of p_empty (Eq. 14), so that one sighting keeps it, when every return of the scan in
-     *  the floor lies on ground: the next beam above returned farther, at most this slope
-     *  (degrees) higher or lower, and the beams below, one after the other down to the lowest,
-     *  each returned nearer, within this slope plus ground_max_step of the one above. With a
+     *  of p_empty (Eq. 14) where it was seen (not its padding), so that one sighting keeps it,
+     *  when every return of the scan in the floor lies on ground: the next beam above returned
+     *  farther, at most this slope (degrees) higher or lower, or beyond the pillar and not
+     *  lower; and the beams below, one after the other down to the lowest, each returned
+     *  nearer, within this slope (plus ground_max_step below the first) of the one above. With a
      *  sparse LiDAR, ground tens of metres away is crossed by a beam in one scan only, and
      *  "needs a second sighting" (p_empty_init < 0.5) removed it; what stands on the ground
      *  (a car's foot, a roof) breaks the run and still needs a second sighting. */
