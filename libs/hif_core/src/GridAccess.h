@@ -33,9 +33,9 @@ struct Workspace
     std::vector<uint8_t> returned_blocks;      ///< of range_image (buildReturnImage())
     std::vector<uint8_t> hit;                  ///< see-through misses: pillars the scan hit
     /** BeamGate::runs of the scan's image (ground seen once), and the scan's generation. */
-    std::unique_ptr<std::atomic<uint16_t>[]> ground_runs;
+    std::unique_ptr<std::atomic<uint8_t>[]> ground_runs;
     std::size_t ground_runs_cells = 0;
-    uint16_t ground_generation = 0;
+    uint8_t ground_generation = 0;
 
     /** Scan buffers of classify() (const, and may run concurrently): each call takes one, or
      *  a new one, and gives it back; they are freed with the grid. */

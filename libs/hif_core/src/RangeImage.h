@@ -341,9 +341,10 @@ struct BeamGate
     /** For onGround(): per cell of the image, whether the run of returns from the cell's down
      *  to the column's lowest is level (runDownIsLevel()), found once per scan: the cell's
      *  value is (generation << 2) | 1 (level) or 2 (broken); another generation is unknown.
+     *  A byte a cell (a 6-bit generation): half the cache misses of two bytes, measured.
      *  Atomic: the gates of one scan run on several threads, and find the same values. */
-    std::atomic<uint16_t>* runs = nullptr;
-    uint16_t generation = 0;
+    std::atomic<uint8_t>* runs = nullptr;
+    uint8_t generation = 0;
 
 private:
     /** Where the pillar's axis lies in the image between two heights. */
@@ -552,7 +553,7 @@ private:
         bool level = false;
         for (;;)
         {
-            const uint16_t v = runs[cell(from)].load(std::memory_order_relaxed);
+            const uint8_t v = runs[cell(from)].load(std::memory_order_relaxed);
             if (v >> 2 == generation)
             {
                 level = (v & 3) == 1;
@@ -568,7 +569,7 @@ private:
             if (!levelWith(from.place, below.place, slope_tan, step)) break;
             from = below;
         }
-        const auto v = static_cast<uint16_t>((generation << 2) | (level ? 1 : 2));
+        const auto v = static_cast<uint8_t>((generation << 2) | (level ? 1 : 2));
         for (int k = 0; k < n; ++k) runs[walked[k]].store(v, std::memory_order_relaxed);
         return level;
     }

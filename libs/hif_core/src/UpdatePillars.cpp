@@ -38,11 +38,11 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
         const std::size_t cells = grid.imageLayout().cells();
         if (ws.ground_runs_cells != cells)
         {
-            ws.ground_runs.reset(new std::atomic<uint16_t>[cells]());
+            ws.ground_runs.reset(new std::atomic<uint8_t>[cells]());
             ws.ground_runs_cells = cells;
             ws.ground_generation = 0;
         }
-        if (++ws.ground_generation == 1u << 14)  // the values' 14 bits wrap: start afresh
+        if (++ws.ground_generation == 1u << 6)  // the generation's 6 bits wrap: start afresh
         {
             for (std::size_t c = 0; c < cells; ++c)
                 ws.ground_runs[c].store(0, std::memory_order_relaxed);
