@@ -34,14 +34,14 @@ struct Judge
     std::size_t pos;    ///< in FreeSpaceTest::scans()
     Eigen::Vector3d t;  ///< sensor position, world frame
     Eigen::Matrix3d Rt;
-    const uint16_t* image;  ///< centimetres (FreeSpaceTest::Scan::image)
+    const FreeSpaceTest::Image* image;  ///< centimetres
     const RangeImageLayout* layout;
     double baseline = 0.0;  ///< distance to the classified scan's sensor
 
     /** Range of the nearest return in cell (r, c), metres; +inf for none. */
     [[nodiscard]] float at(int r, int c) const
     {
-        const uint16_t v = image[static_cast<std::size_t>(r) * layout->cols + c];
+        const uint16_t v = image->at(r, c);
         return v == FreeSpaceTest::kNoReturn ? std::numeric_limits<float>::infinity()
                                              : static_cast<float>(v) * 0.01f;
     }
@@ -265,7 +265,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             continue;
         const FreeSpaceTest::Scan& s = scans[k];
         judges.push_back({k, s.sensor_to_world.translation(),
-                          s.sensor_to_world.linear().transpose(), s.image.data(), &s.layout});
+                          s.sensor_to_world.linear().transpose(), &s.image, &s.layout});
     }
     judge_count = judges.size();
     if (judges.empty()) return 0;

@@ -40,6 +40,52 @@ void FreeSpaceTest::dropBeyondCapacity()
     }
 }
 
+void FreeSpaceTest::Image::assign(int rows, int cols, const std::vector<uint16_t>& dense)
+{
+    if (rows < 0 || cols < 0 ||
+        dense.size() != static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols))
+        throw std::invalid_argument("hif::FreeSpaceTest::Image: " + std::to_string(dense.size()) +
+                                    " cells for " + std::to_string(rows) + " rows of " +
+                                    std::to_string(cols));
+    rows_ = rows;
+    cols_ = cols;
+    blocks_per_row_ = (static_cast<std::size_t>(cols) + kBlockCols - 1) / kBlockCols;
+    blocks_.assign(static_cast<std::size_t>(rows) * blocks_per_row_, kNoBlock);
+    // The blocks kept, then their cells (allocated once, at their size), after the empty one.
+    std::size_t kept = 1;
+    for (int r = 0; r < rows; ++r)
+    {
+        const uint16_t* row = dense.data() + static_cast<std::size_t>(r) * cols;
+        for (std::size_t b = 0; b < blocks_per_row_; ++b)
+        {
+            const std::size_t c0 = b * kBlockCols;
+            const std::size_t n = std::min<std::size_t>(kBlockCols, cols - c0);
+            if (std::all_of(row + c0, row + c0 + n, [](uint16_t v) { return v == kNoReturn; }))
+                continue;
+            blocks_[static_cast<std::size_t>(r) * blocks_per_row_ + b] =
+                static_cast<uint32_t>(kept * kBlockCols);
+            ++kept;
+        }
+    }
+    cells_.assign(kept * kBlockCols, kNoReturn);
+    for (std::size_t k = 0; k < blocks_.size(); ++k)
+    {
+        if (blocks_[k] == kNoBlock) continue;
+        const std::size_t r = k / blocks_per_row_, c0 = (k % blocks_per_row_) * kBlockCols;
+        const std::size_t n = std::min<std::size_t>(kBlockCols, cols - c0);
+        std::copy_n(dense.data() + r * cols + c0, n, cells_.data() + blocks_[k]);
+    }
+}
+
+bool operator==(const FreeSpaceTest::Image& a, const FreeSpaceTest::Image& b)
+{
+    if (a.rows_ != b.rows_ || a.cols_ != b.cols_) return false;
+    for (int r = 0; r < a.rows_; ++r)
+        for (int c = 0; c < a.cols_; ++c)
+            if (a.at(r, c) != b.at(r, c)) return false;
+    return true;
+}
+
 void FreeSpaceTest::add(const PointsView& points, const Eigen::Isometry3d& sensor_to_world,
                         const RangeImageLayout& layout)
 {
@@ -50,17 +96,19 @@ void FreeSpaceTest::add(const PointsView& points, const Eigen::Isometry3d& senso
     s.layout = layout;
     s.image = std::move(spare_);
     spare_ = {};
-    detail::buildRangeImageCm(layout, points, s.image);
+    detail::buildRangeImageCm(layout, points, dense_);
+    s.image.assign(layout.rows, layout.cols, dense_);
     scans_.push_back(std::move(s));
     dropBeyondCapacity();
 }
 
 void FreeSpaceTest::add(Scan scan)
 {
-    if (scan.image.size() != scan.layout.cells())
-        throw std::invalid_argument("hif::FreeSpaceTest::add: an image of " +
-                                    std::to_string(scan.image.size()) + " cells for a layout of " +
-                                    std::to_string(scan.layout.cells()));
+    if (scan.image.rows() != scan.layout.rows || scan.image.cols() != scan.layout.cols)
+        throw std::invalid_argument(
+            "hif::FreeSpaceTest::add: an image of " + std::to_string(scan.image.rows()) + " x " +
+            std::to_string(scan.image.cols()) + " cells for a layout of " +
+            std::to_string(scan.layout.rows) + " x " + std::to_string(scan.layout.cols));
     if (capacity_ == 0) return;
     scans_.push_back(std::move(scan));
     dropBeyondCapacity();
@@ -115,8 +163,8 @@ std::optional<std::size_t> FreeSpaceTest::find(const PointsView& points,
 
 std::size_t FreeSpaceTest::memoryBytes() const
 {
-    std::size_t bytes = spare_.capacity() * sizeof(uint16_t);
-    for (const Scan& s : scans_) bytes += sizeof(Scan) + s.image.capacity() * sizeof(uint16_t);
+    std::size_t bytes = spare_.memoryBytes() + dense_.capacity() * sizeof(uint16_t);
+    for (const Scan& s : scans_) bytes += sizeof(Scan) + s.image.memoryBytes();
     return bytes;
 }
 
@@ -128,7 +176,7 @@ bool operator==(const FreeSpaceTest& a, const FreeSpaceTest& b)
         const FreeSpaceTest::Scan &x = a.scans_[k], &y = b.scans_[k];
         if (x.fingerprint != y.fingerprint ||
             x.sensor_to_world.matrix() != y.sensor_to_world.matrix() || !(x.layout == y.layout) ||
-            x.image != y.image)
+            !(x.image == y.image))
             return false;
     }
     return true;

@@ -46,21 +46,19 @@ void writeTestScan(mrpt::serialization::CArchive& out, const FreeSpaceTest::Scan
     out << static_cast<int32_t>(s.layout.cols) << static_cast<int32_t>(s.layout.rows)
         << s.layout.tan_min << s.layout.tan_max << s.layout.tan_res;
     std::vector<uint8_t> bytes;
-    bytes.reserve(s.image.size() / 2);
-    std::size_t skipped = 0;
-    for (const uint16_t v : s.image)
-    {
-        if (v == FreeSpaceTest::kNoReturn)
+    bytes.reserve(s.image.cells() / 2);
+    std::size_t next = 0;  // the cell after the last return written
+    s.image.forEachReturn(
+        [&](std::size_t cell, uint16_t v)
         {
-            ++skipped;
-            continue;
-        }
-        for (; skipped >= 0x80; skipped >>= 7) bytes.push_back(uint8_t(0x80 | (skipped & 0x7F)));
-        bytes.push_back(uint8_t(skipped));
-        skipped = 0;
-        bytes.push_back(uint8_t(v & 0xFF));
-        bytes.push_back(uint8_t(v >> 8));
-    }
+            std::size_t skipped = cell - next;
+            for (; skipped >= 0x80; skipped >>= 7)
+                bytes.push_back(uint8_t(0x80 | (skipped & 0x7F)));
+            bytes.push_back(uint8_t(skipped));
+            next = cell + 1;
+            bytes.push_back(uint8_t(v & 0xFF));
+            bytes.push_back(uint8_t(v >> 8));
+        });
     out << static_cast<uint32_t>(bytes.size());
     out.WriteBuffer(bytes.data(), bytes.size());
 }
@@ -83,13 +81,12 @@ FreeSpaceTest::Scan readTestScan(mrpt::serialization::CArchive& in,
             "Corrupt hif map: a free-space image of %d x %d cells, not laid out "
             "for the map's sensor (%d x %d)",
             cols, rows, expected.cols, expected.rows);
-    s.image.assign(s.layout.cells(), FreeSpaceTest::kNoReturn);
+    std::vector<uint16_t> image(s.layout.cells(), FreeSpaceTest::kNoReturn);
     uint32_t n = 0;
     in >> n;
     // At most 4 bytes a cell (a varint of up to 2 bytes and the value): more is corruption.
-    if (n > 4 * s.image.size())
-        THROW_EXCEPTION_FMT("Corrupt hif map: %u bytes for an image of %zu cells", n,
-                            s.image.size());
+    if (n > 4 * image.size())
+        THROW_EXCEPTION_FMT("Corrupt hif map: %u bytes for an image of %zu cells", n, image.size());
     std::vector<uint8_t> bytes(n);
     if (in.ReadBuffer(bytes.data(), n) != n)
         THROW_EXCEPTION("Corrupt hif map: a free-space image ends early");
@@ -106,11 +103,12 @@ FreeSpaceTest::Scan readTestScan(mrpt::serialization::CArchive& in,
             if (!(b & 0x80)) break;
         }
         cell += skip;
-        if (cell >= s.image.size() || k + 2 > n)
+        if (cell >= image.size() || k + 2 > n)
             THROW_EXCEPTION("Corrupt hif map: a free-space image's cells");
-        s.image[cell++] = uint16_t(bytes[k] | bytes[k + 1] << 8);
+        image[cell++] = uint16_t(bytes[k] | bytes[k + 1] << 8);
         k += 2;
     }
+    s.image.assign(s.layout.rows, s.layout.cols, image);
     return s;
 }
 }  // namespace

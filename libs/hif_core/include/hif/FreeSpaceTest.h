@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
@@ -42,6 +43,68 @@ public:
     /** Points of a scan that its fingerprint() reads (all of a smaller scan). */
     static constexpr std::size_t kFingerprintPoints = 4096;
 
+    /** A scan's range image: rows x cols cells, centimetres (up to 655.34 m), kNoReturn where
+     *  no return. Kept by blocks of kBlockCols cells of a row, only those with a return: a
+     *  scan's returns fill 35-45 % of them (its beams every other row, rows of a beam partly
+     *  empty), so the image takes about half the memory of all its cells. */
+    class Image
+    {
+    public:
+        static constexpr uint32_t kBlockCols = 32;
+
+        /** Takes the cells of `dense` (rows x cols, row-major). Throws std::invalid_argument if
+         *  its size is not rows x cols. */
+        void assign(int rows, int cols, const std::vector<uint16_t>& dense);
+        /** The cell at (row, col), which must lie in the image. */
+        [[nodiscard]] uint16_t at(int row, int col) const
+        {
+            const auto c = static_cast<uint32_t>(col);
+            return cells_[blocks_[static_cast<std::size_t>(row) * blocks_per_row_ +
+                                  c / kBlockCols] +
+                          c % kBlockCols];
+        }
+        [[nodiscard]] int rows() const { return rows_; }
+        [[nodiscard]] int cols() const { return cols_; }
+        /** rows() x cols(). */
+        [[nodiscard]] std::size_t cells() const
+        {
+            return static_cast<std::size_t>(rows_) * static_cast<std::size_t>(cols_);
+        }
+        /** Calls f(cell, value) for every cell with a return, in row-major order (cell = row x
+         *  cols() + col). */
+        template <typename F>
+        void forEachReturn(F&& f) const
+        {
+            for (int r = 0; r < rows_; ++r)
+                for (std::size_t b = 0; b < blocks_per_row_; ++b)
+                {
+                    const uint32_t at = blocks_[static_cast<std::size_t>(r) * blocks_per_row_ + b];
+                    if (at == kNoBlock) continue;  // no return in it
+                    const std::size_t c0 = b * kBlockCols;
+                    const std::size_t n = std::min<std::size_t>(kBlockCols, cols_ - c0);
+                    for (std::size_t c = 0; c < n; ++c)
+                        if (cells_[at + c] != kNoReturn)
+                            f(static_cast<std::size_t>(r) * cols_ + c0 + c, cells_[at + c]);
+                }
+        }
+        /** Heap memory held. */
+        [[nodiscard]] std::size_t memoryBytes() const
+        {
+            return blocks_.capacity() * sizeof(uint32_t) + cells_.capacity() * sizeof(uint16_t);
+        }
+        /** The same cells. */
+        friend bool operator==(const Image& a, const Image& b);
+
+    private:
+        /** Where every block without a return starts: cells_ begins with one block of
+         *  kNoReturn, so at() needs no branch. */
+        static constexpr uint32_t kNoBlock = 0;
+        int rows_ = 0, cols_ = 0;
+        std::size_t blocks_per_row_ = 0;
+        std::vector<uint32_t> blocks_;  ///< per block, where its cells start in cells_
+        std::vector<uint16_t> cells_;   ///< kBlockCols per block kept, after the empty one
+    };
+
     /** One scan of the test. */
     struct Scan
     {
@@ -50,9 +113,8 @@ public:
         Eigen::Isometry3d sensor_to_world = Eigen::Isometry3d::Identity();
         /** How `image` is laid out (from the map's sensor model). */
         RangeImageLayout layout;
-        /** layout.cols x layout.rows, row-major, centimetres (up to 655.34 m), kNoReturn where
-         *  no return. */
-        std::vector<uint16_t> image;
+        /** layout.rows x layout.cols. */
+        Image image;
     };
 
     /** A test that keeps the newest `capacity` scans added (0: none; the test is off). */
@@ -72,7 +134,7 @@ public:
     void add(const PointsView& points, const Eigen::Isometry3d& sensor_to_world,
              const RangeImageLayout& layout);
     /** Adds a scan as it was kept (scans() of another test: deserialization). Throws
-     *  std::invalid_argument if its image does not have its layout's size. */
+     *  std::invalid_argument if its image does not have its layout's rows and columns. */
     void add(Scan scan);
 
     /** Position in scans() of the scan with these points at this pose, if the test holds it. */
@@ -100,7 +162,8 @@ private:
 
     std::size_t capacity_ = 0;
     std::deque<Scan> scans_;
-    std::vector<uint16_t> spare_;  ///< the image of the last scan dropped, reused
+    Image spare_;                  ///< the image of the last scan dropped, reused
+    std::vector<uint16_t> dense_;  ///< all cells of the image being built
 };
 
 }  // namespace hif
