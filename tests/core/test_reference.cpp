@@ -7,6 +7,7 @@
  */
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -15,6 +16,7 @@
 #include <thread>
 
 #include "hif/PillarGrid.h"
+#include "hif/SensorModel.h"
 #include "hif/detail/InsertSteps.h"
 
 using namespace hif;
@@ -429,6 +431,73 @@ TEST(SeeThroughMisses, SameMapOnOneAndThreeThreads)
     // is empty only with them.
     EXPECT_FALSE(g1.isStatic(8.5, -2.5, -1.0));
     EXPECT_TRUE(off.isStatic(8.5, -2.5, -1.0));
+}
+
+// The buffers kept from scan to scan are only buffers: a grid that frees them now and then
+// builds the same map and gives the same classes as one that keeps them. The scans are those of
+// a 16-ring LiDAR, so that the ground rule (and its memo of runs down the image) takes part.
+TEST(ScanBuffers, ReleasingThemChangesNeitherTheMapNorTheClasses)
+{
+    std::vector<double> el;
+    for (int e = -15; e <= 15; e += 2) el.push_back(e);
+    const SensorModel sensor = SensorModel::fromBeams(el, 0.4);
+    Params prm;
+    prm.p_empty_init = 0.42;
+    prm.see_through_range = 30.0;
+    prm.ground_max_slope_deg = 5.0;
+    PillarGrid kept(GridGeometry(), prm), released(GridGeometry(), prm);
+    Params no_rule = prm;
+    no_rule.ground_max_slope_deg = 0.0;
+    PillarGrid without_ground_rule(GridGeometry(), no_rule);
+    for (PillarGrid* g : {&kept, &released, &without_ground_rule})
+    {
+        g->setSensorModel(sensor);
+        g->setThreads(2);
+    }
+    constexpr double kGround = -1.7, kWall = 20.0;
+    std::vector<float> x, y, z;
+    for (int scan = 0; scan < 6; ++scan)
+    {
+        // Ground, a wall 20 m around the sensor, and a box 1 m wide whose face, 1.5 m high,
+        // comes 1.1 m nearer each scan while the sensor moves 0.4 m towards it.
+        const double box = 12.0 - 1.1 * scan;
+        x.clear();
+        y.clear();
+        z.clear();
+        for (int a = 0; a < 900; ++a)
+        {
+            const double az = a * 0.4 * M_PI / 180.0, c = std::cos(az), s = std::sin(az);
+            for (const double e_deg : el)
+            {
+                const double t = std::tan(e_deg * M_PI / 180.0);
+                double d = kWall;  // horizontal distance to the first surface along the beam
+                if (t < 0) d = std::min(d, kGround / t);
+                if (c > 0 && std::abs(box * s / c + 2.5) < 0.5 && box / c * t < kGround + 1.5)
+                    d = std::min(d, box / c);
+                x.push_back(float(d * c));
+                y.push_back(float(d * s));
+                z.push_back(float(d * t));
+            }
+        }
+        const PointsView view{x.data(), y.data(), z.data(), x.size()};
+        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+        T.translation() = Eigen::Vector3d(0.4 * scan, 0.0, 0.0);
+        kept.insertScan(view, T);
+        released.insertScan(view, T);
+        without_ground_rule.insertScan(view, T);
+        std::vector<uint8_t> a, b;
+        const ClassifyStats sa = kept.classify(view, a, T);
+        const ClassifyStats sb = released.classify(view, b, T);
+        if (scan % 2 == 0) released.releaseScanBuffers();
+        ASSERT_TRUE(kept == released) << "the maps differ after scan " << scan;
+        ASSERT_EQ(a, b) << "the classes differ at scan " << scan;
+        EXPECT_EQ(sa.static_points, sb.static_points);
+        if (scan > 1)
+        {
+            EXPECT_GT(sa.dynamic_points, 0u) << "the box should be dynamic";
+        }
+    }
+    EXPECT_FALSE(kept == without_ground_rule) << "the ground rule should take part";
 }
 
 // classify() is const and may run on several threads at once on one grid: each call takes its

@@ -11,7 +11,6 @@
 #include <mrpt/obs/CObservationPointCloud.h>
 
 #include <cmath>
-#include <deque>
 #include <filesystem>
 #include <sstream>
 #include <utility>
@@ -261,34 +260,48 @@ std::vector<hif::apps::Scan> insertAll(Run& run, Outputs& out, Timings& t, std::
 
 /** Pass 2 (offline): every point of every scan classified against the final map, and, with
  *  the free-space test on, by the free_space_window scans on each side of it: the scans are
- *  read again and given to the map's test in their order, and scan k is classified once scan k
- *  + free_space_window is in (read ahead and held until then). */
+ *  given to the map's test in their order, and scan k is classified once scan k +
+ *  free_space_window is in. The input is read again for the test, each scan dropped once its
+ *  image is made, and once more, free_space_window scans behind, to classify: holding the scans
+ *  in between would cost as many scans of memory, and the readers have time to spare. With
+ *  --hold-scans, the scans come from memory. */
 void classifyAll(Run& run, std::vector<hif::apps::Scan>& held, Outputs& out, std::size_t scans)
 {
     hif::apps::Progress progress(Clean::kTag, "classifying", scans, run.show_progress);
     const std::size_t w = run.hif_map->params().free_space_window;
-    std::deque<hif::apps::Scan> ahead;  // read, not yet classified
-    std::size_t next = 0;               // the next scan to read
-    if (!run.hold_scans) run.source->rewind();
+    std::unique_ptr<hif::apps::ScanSource> behind;  // the scans to classify, when read apart
+    if (!run.hold_scans)
+    {
+        run.source->rewind();
+        if (w > 0) behind = hif::apps::openScanSource(run.input, {}, true, run.poses);
+    }
+    auto read = [&](hif::apps::ScanSource& source, std::size_t k)
+    {
+        hif::apps::Scan s;
+        if (!source.next(s))
+            throw std::runtime_error("input '" + run.input + "' held " + std::to_string(scans) +
+                                     " scans when first read, " + std::to_string(k) + " now");
+        s.obs->load();
+        return s;
+    };
+    std::size_t next = 0;  // the next scan to give to the free-space test
     for (std::size_t k = 0; k < scans; ++k)
     {
-        while (next < scans && next <= k + w)
+        for (; w > 0 && next < scans && next <= k + w; ++next)
         {
-            hif::apps::Scan s;
             if (run.hold_scans)
-                s = std::move(held[next]);  // released once classified
-            else if (!run.source->next(s))
-                throw std::runtime_error("input '" + run.input + "' held " + std::to_string(scans) +
-                                         " scans when first read, " + std::to_string(next) +
-                                         " now");
-            s.obs->load();
-            if (w > 0) run.hif_map->addToFreeSpaceTest(*s.obs, s.robot_pose);
-            ahead.push_back(std::move(s));
-            ++next;
+            {
+                run.hif_map->addToFreeSpaceTest(*held[next].obs, held[next].robot_pose);
+                continue;
+            }
+            const hif::apps::Scan s = read(*run.source, next);
+            run.hif_map->addToFreeSpaceTest(*s.obs, s.robot_pose);
+            s.obs->unload();
         }
-        out.classifyAndWrite(*run.hif_map, ahead.front(), k);
-        if (!run.hold_scans) ahead.front().obs->unload();
-        ahead.pop_front();
+        hif::apps::Scan s =
+            run.hold_scans ? std::move(held[k]) : read(behind ? *behind : *run.source, k);
+        out.classifyAndWrite(*run.hif_map, s, k);
+        if (!run.hold_scans) s.obs->unload();
         progress.update(k + 1);
     }
     progress.finish();
@@ -353,6 +366,10 @@ CleanResult Clean::run(std::ostream& log) const
     {
         out.expectKept(t.points);  // most points are kept
         out.pictureCovers(*run.hif_map);
+        // Insertion is done: its buffers go, and the heap's free pages with them, before the
+        // second pass takes its own (the peak of the run is in that pass).
+        run.hif_map->releaseScanBuffers();
+        hif::apps::returnFreeHeap();
         t_pass = Clock::now();
         classifyAll(run, held, out, t.scans);
         t.classify_pass_s = msSince(t_pass) / 1000.0;

@@ -70,11 +70,33 @@ struct Workspace
             return Lease{this, std::move(buffer)};
         }
 
+        /** Frees the buffers not lent out. */
+        void release()
+        {
+            const std::lock_guard<std::mutex> lock(mutex_);
+            free_.clear();
+        }
+
     private:
         std::mutex mutex_;
         std::vector<std::unique_ptr<ScanBuckets>> free_;
     };
     ClassifyBuffers classify_buffers;
+
+    /** Frees every buffer (PillarGrid::releaseScanBuffers()). */
+    void release()
+    {
+        scan = {};
+        targets = {};
+        updater = PillarUpdater{LogOddsModel(), 1};
+        range_image = {};
+        returned_blocks = {};
+        hit = {};
+        ground_runs.reset();
+        ground_runs_cells = 0;
+        ground_generation = 0;
+        classify_buffers.release();
+    }
 };
 
 }  // namespace hif::detail

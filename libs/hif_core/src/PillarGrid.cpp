@@ -46,6 +46,8 @@ void PillarGrid::clear()
     setSensorModel(std::nullopt);
 }
 
+void PillarGrid::releaseScanBuffers() { state_->workspace.release(); }
+
 void PillarGrid::setParams(const Params& params)
 {
     params.validateWith(geometry_);

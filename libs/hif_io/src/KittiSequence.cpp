@@ -187,18 +187,24 @@ Cloud readKittiBin(const std::string& f)
     const std::size_t n = kittiBinPointCount(f);
     std::ifstream in(f, std::ios::binary);
     if (!in) throwFileError(f, "cannot be opened");
-    std::vector<float> raw(4 * n);
-    if (!in.read(reinterpret_cast<char*>(raw.data()),
-                 static_cast<std::streamsize>(raw.size() * sizeof(float))))
-        throwFileError(f, "could not be read whole");
     Cloud c;
     c.resize(n);
-    for (std::size_t k = 0; k < n; ++k)
+    // In chunks: no second copy of the whole scan.
+    constexpr std::size_t kChunk = 4096;  // points
+    std::vector<float> raw(4 * std::min(n, kChunk));
+    for (std::size_t first = 0; first < n; first += kChunk)
     {
-        c.x[k] = raw[4 * k];
-        c.y[k] = raw[4 * k + 1];
-        c.z[k] = raw[4 * k + 2];
-        c.intensity[k] = raw[4 * k + 3];
+        const std::size_t m = std::min(kChunk, n - first);
+        if (!in.read(reinterpret_cast<char*>(raw.data()),
+                     static_cast<std::streamsize>(4 * m * sizeof(float))))
+            throwFileError(f, "could not be read whole");
+        for (std::size_t k = 0; k < m; ++k)
+        {
+            c.x[first + k] = raw[4 * k];
+            c.y[first + k] = raw[4 * k + 1];
+            c.z[first + k] = raw[4 * k + 2];
+            c.intensity[first + k] = raw[4 * k + 3];
+        }
     }
     return c;
 }

@@ -84,6 +84,9 @@ public:
                             const mrpt::poses::CPose3D& robotPose);
     /** The scans that judge a classified one (see FreeSpaceTest); serialized with the map. */
     [[nodiscard]] const FreeSpaceTest& freeSpaceTest() const { return free_space_; }
+    /** Frees the buffers kept from one scan to the next (PillarGrid::releaseScanBuffers()):
+     *  offline, once every scan is inserted. */
+    void releaseScanBuffers() { grid_.releaseScanBuffers(); }
 
     [[nodiscard]] std::size_t pillarCount() const { return grid_.pillarCount(); }
     [[nodiscard]] std::size_t intervalCount() const { return grid_.intervalCount(); }
