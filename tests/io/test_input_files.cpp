@@ -184,6 +184,52 @@ TEST(ReadPcd, AsciiNanIsAnInvalidPointAndFloat64KeepsTheMillimetres)
     EXPECT_EQ(u.intensity[1], 0.25f);
 }
 
+// A binary body is read in chunks of records: every point of a cloud of several chunks (and a
+// last, partial one) reads back as written, float32 or float64, with a field between.
+TEST(ReadPcd, ABinaryBodyOfManyChunksReadsBackPointForPoint)
+{
+    const auto work = scratch("chunks");
+    constexpr std::size_t kPoints = 3 * 4096 + 123;
+    const auto coordinate = [](std::size_t i, int axis)
+    { return 630000.0 * (axis == 0) + 0.001 * double(i) + 10.0 * axis; };
+    for (const int size : {4, 8})
+    {
+        const std::string file = work.path() + "/cloud" + std::to_string(size) + ".pcd";
+        {
+            std::ofstream f(file, std::ios::binary);
+            f << "FIELDS x y z ring intensity\nSIZE " << size << " " << size << " " << size
+              << " 2 4\nTYPE F F F U F\nPOINTS " << kPoints << "\nDATA binary\n";
+            for (std::size_t i = 0; i < kPoints; ++i)
+            {
+                for (int axis = 0; axis < 3; ++axis)
+                {
+                    const double d = coordinate(i, axis);
+                    const auto v = static_cast<float>(d);
+                    f.write(size == 8 ? reinterpret_cast<const char*>(&d)
+                                      : reinterpret_cast<const char*>(&v),
+                            size);
+                }
+                const auto ring = static_cast<uint16_t>(i % 64);
+                const auto intensity = static_cast<float>(i);
+                f.write(reinterpret_cast<const char*>(&ring), 2);
+                f.write(reinterpret_cast<const char*>(&intensity), 4);
+            }
+        }
+        const hif::io::PcdCloud c = hif::io::readPcd(file);
+        ASSERT_EQ(c.size(), kPoints);
+        std::size_t wrong = 0;
+        for (std::size_t i = 0; i < kPoints; ++i)
+            for (int axis = 0; axis < 3; ++axis)
+            {
+                const double expected = size == 8 ? coordinate(i, axis)
+                                                  : double(static_cast<float>(coordinate(i, axis)));
+                wrong += std::abs(c.point(i)[axis] - expected) > 1e-6 ||
+                         c.intensity[i] != static_cast<float>(i);
+            }
+        EXPECT_EQ(wrong, 0u) << "SIZE " << size;
+    }
+}
+
 TEST(CloudWriter, CoordinatesWidenToFloat64WhereFloat32WouldLoseMillimetres)
 {
     const auto work = scratch("widen");

@@ -376,8 +376,10 @@ CleanResult Clean::run(std::ostream& log) const
     }
 
     const auto t_files = Clock::now();
-    hif::apps::returnFreeHeap();  // the scans' buffers, kept for reuse, go back now
     out.close();
+    // The scans' buffers, kept for reuse, go back before the files and the picture are made.
+    run.hif_map->releaseScanBuffers();
+    hif::apps::returnFreeHeap();
     const std::size_t rawlog_scans = out.closeRawlog();
     run.hif_map->saveToFile(dir + "/map.hifmap");
     std::ostringstream title;

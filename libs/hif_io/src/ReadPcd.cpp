@@ -3,6 +3,7 @@
  * @file   ReadPcd.cpp
  * @brief  PCD reader (ASCII and binary) for the DynamicMap benchmark layout.
  */
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -120,46 +121,51 @@ PcdCloud readPcd(const std::string& file)
     WidePoints stored(out, wide);
     if (data == "binary")
     {
-        // One read of the whole body, then the fields picked out of each record.
-        // Kept from one file to the next on this thread (no new pages to fault in per file).
-        thread_local std::vector<char> body;
-        body.resize(points * stride);
-        if (!f.read(body.data(), static_cast<std::streamsize>(body.size())))
-            throwFileError(file, "is truncated: POINTS says " + std::to_string(points) +
-                                     ", found " + std::to_string(f.gcount() / stride));
+        // The body read in chunks of records, the fields picked out of each: a buffer of a
+        // few pages rather than a second copy of the cloud.
+        constexpr std::size_t kChunkPoints = 4096;
+        std::vector<char> chunk(std::min(points, kChunkPoints) * stride);
         const std::size_t ox = offset[ix], oy = offset[iy], oz = offset[iz];
         const std::size_t oi = ii >= 0 ? offset[ii] : 0;
-        const char* rec = body.data();
-        if (!wide)
+        const auto coord = [](const char* at, int size)
         {
-            // One pass over the records (the usual x y z intensity at 0, 4, 8, 12 vectorizes).
-            for (std::size_t p = 0; p < points; ++p, rec += stride)
+            if (size == 8)
             {
-                std::memcpy(&out.x[p], rec + ox, 4);
-                std::memcpy(&out.y[p], rec + oy, 4);
-                std::memcpy(&out.z[p], rec + oz, 4);
-                if (ii >= 0) std::memcpy(&out.intensity[p], rec + oi, 4);
+                double d;
+                std::memcpy(&d, at, 8);
+                return d;
             }
-        }
-        else
+            float v;
+            std::memcpy(&v, at, 4);
+            return double(v);
+        };
+        for (std::size_t first = 0; first < points; first += kChunkPoints)
         {
-            const auto coord = [](const char* at, int size)
+            const std::size_t n = std::min(kChunkPoints, points - first);
+            if (!f.read(chunk.data(), static_cast<std::streamsize>(n * stride)))
+                throwFileError(file, "is truncated: POINTS says " + std::to_string(points) +
+                                         ", found " + std::to_string(first + f.gcount() / stride));
+            const char* rec = chunk.data();
+            if (!wide)
             {
-                if (size == 8)
+                // One pass over the records (the usual x y z intensity at 0, 4, 8, 12
+                // vectorizes).
+                for (std::size_t p = first; p < first + n; ++p, rec += stride)
                 {
-                    double d;
-                    std::memcpy(&d, at, 8);
-                    return d;
+                    std::memcpy(&out.x[p], rec + ox, 4);
+                    std::memcpy(&out.y[p], rec + oy, 4);
+                    std::memcpy(&out.z[p], rec + oz, 4);
+                    if (ii >= 0) std::memcpy(&out.intensity[p], rec + oi, 4);
                 }
-                float v;
-                std::memcpy(&v, at, 4);
-                return double(v);
-            };
-            for (std::size_t p = 0; p < points; ++p, rec += stride)
+            }
+            else
             {
-                stored.store(p, coord(rec + ox, sizes[ix]), coord(rec + oy, sizes[iy]),
-                             coord(rec + oz, sizes[iz]));
-                if (ii >= 0) std::memcpy(&out.intensity[p], rec + oi, 4);
+                for (std::size_t p = first; p < first + n; ++p, rec += stride)
+                {
+                    stored.store(p, coord(rec + ox, sizes[ix]), coord(rec + oy, sizes[iy]),
+                                 coord(rec + oz, sizes[iz]));
+                    if (ii >= 0) std::memcpy(&out.intensity[p], rec + oi, 4);
+                }
             }
         }
     }

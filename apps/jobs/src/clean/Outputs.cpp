@@ -283,4 +283,6 @@ void Outputs::close()
     if (kept_cloud_) kept_cloud_->close();
     removed_cloud_.close();
     if (classes_) classes_->close();
+    for (std::vector<double>& v : xyz_) v = {};  // the last scan's points: no more scans come
+    intensity_ = {};
 }
