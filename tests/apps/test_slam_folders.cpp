@@ -124,10 +124,21 @@ TEST(SlamFolders, CloudsWithTheirPosesGiveTheKittiFoldersClasses)
     EXPECT_GT(ref_summary["poses_check"]["overlap_above_sensor"].get<double>(),
               ref_summary["poses_check"]["overlap_above_sensor_without_motion"].get<double>());
 
-    r = clean(w + "/pcd_scans", w + "/pcd_out");
+    r = clean(w + "/pcd_scans", w + "/pcd_out", "", true);
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_EQ(predictions(w + "/pcd_out", seq.size()), reference);
     EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
+    // poses.txt has no times: the points get their scan's number and no time (not the time
+    // the scan was read).
+    {
+        std::ifstream ply(w + "/pcd_out/static_map.ply", std::ios::binary);
+        std::string header;
+        for (std::string line; std::getline(ply, line) && line != "end_header";)
+            header += line + "\n";
+        EXPECT_NE(header.find("property float intensity\nproperty uint scan\n"), std::string::npos)
+            << header;
+        EXPECT_EQ(header.find("time"), std::string::npos) << header;
+    }
 
     r = clean(w + "/ply_scans", w + "/ply_out", w + "/ply_poses_kitti.txt");
     ASSERT_EQ(r.code, 0) << r.output;

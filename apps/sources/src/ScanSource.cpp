@@ -150,6 +150,9 @@ mrpt::obs::CObservation::Ptr pointCloudObservation(const io::Cloud& cloud)
     auto obs = mrpt::obs::CObservationPointCloud::Create();
     obs->sensorLabel = "LIDAR";
     obs->pointcloud = points;
+    // No time until the source gives one (MRPT stamps a new observation with the time it was
+    // made, which a cloud's --scan-numbers would take for the scan's).
+    obs->timestamp = INVALID_TIMESTAMP;
     return obs;
 }
 

@@ -97,7 +97,8 @@ std::unique_ptr<ScanSource> openScansWithPoses(const std::string& folder,
 std::unique_ptr<ScanSource> readingAhead(std::unique_ptr<ScanSource> source,
                                          PrepareScan prepare = {});
 
-/** A CObservationPointCloud (sensor label LIDAR) holding `cloud` as a CPointsMapXYZI. */
+/** A CObservationPointCloud (sensor label LIDAR) holding `cloud` as a CPointsMapXYZI, without a
+ *  time (INVALID_TIMESTAMP: the source sets the scan's time where it knows it). */
 [[nodiscard]] mrpt::obs::CObservation::Ptr pointCloudObservation(const io::Cloud& cloud);
 
 /** Whether hif-clean can insert and classify this observation type. */
