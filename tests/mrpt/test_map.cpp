@@ -195,6 +195,51 @@ TEST(CHeightIntervalMap, ClassifyingAnObservationPlacesItsPointsAsInsertionDid)
     EXPECT_THROW(map.classify(gps, robot, dyn), std::invalid_argument);
 }
 
+// The world points a chunk at a time are the world points of the whole scan, in order, to the
+// bit, whatever the chunk; a type without points gives none.
+TEST(CHeightIntervalMap, WorldPointsByChunksAreTheWholeScansPoints)
+{
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<double> u(-40.0, 40.0);
+    std::vector<TPoint3D> pts;
+    for (int i = 0; i < 10000; ++i) pts.emplace_back(u(rng), u(rng), 0.05 * u(rng));
+    const CPose3D sensor(0.3, -0.1, 1.8, mrpt::DEG2RAD(-5.0), 0.01, 0.02);
+    const CPose3D robot(630123.4, 5800321.7, 251.0, mrpt::DEG2RAD(71.0), 0.01, 0.0);  // UTM
+    const auto obs = cloud(pts, sensor);
+    std::vector<double> xs, ys, zs;
+    ASSERT_TRUE(CHeightIntervalMap::observationToWorldPoints(*obs, robot, xs, ys, zs));
+    for (const std::size_t chunk :
+         {std::size_t{1}, std::size_t{7}, std::size_t{4096}, std::size_t{100000}})
+    {
+        SCOPED_TRACE(chunk);
+        std::size_t next = 0, calls = 0, wrong = 0;
+        ASSERT_TRUE(CHeightIntervalMap::forEachWorldPointsChunk(
+            *obs, robot, chunk,
+            [&](const CHeightIntervalMap::WorldPointsChunk& c)
+            {
+                ++calls;
+                EXPECT_EQ(c.first, next);
+                EXPECT_EQ(c.total, pts.size());
+                EXPECT_LE(c.size, chunk);
+                for (std::size_t j = 0; j < c.size; ++j)
+                    wrong += c.xs[j] != xs[c.first + j] || c.ys[j] != ys[c.first + j] ||
+                             c.zs[j] != zs[c.first + j];
+                next += c.size;
+            }));
+        EXPECT_EQ(next, pts.size());
+        EXPECT_EQ(calls, (pts.size() + chunk - 1) / chunk);
+        EXPECT_EQ(wrong, 0u);
+    }
+    mrpt::obs::CObservationGPS gps;
+    bool called = false;
+    EXPECT_FALSE(CHeightIntervalMap::forEachWorldPointsChunk(
+        gps, robot, 16, [&](const CHeightIntervalMap::WorldPointsChunk&) { called = true; }));
+    EXPECT_FALSE(called);
+    EXPECT_THROW(CHeightIntervalMap::forEachWorldPointsChunk(
+                     *obs, robot, 0, [](const CHeightIntervalMap::WorldPointsChunk&) {}),
+                 std::invalid_argument);
+}
+
 // Queries never change the map: an option takes effect at the next insertion (or
 // applyOptions()), and an invalid one is reported there, not by a query.
 TEST(CHeightIntervalMap, OptionChangesApplyAtTheNextInsertion)

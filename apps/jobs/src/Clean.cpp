@@ -241,14 +241,15 @@ std::vector<hif::apps::Scan> insertAll(Run& run, Outputs& out, Timings& t, std::
         t.points += pointsOf(*scan.obs);
         if (run.online)
         {
-            out.classifyAndWrite(*run.hif_map, scan, t.scans);
+            // Unloaded once its files are written, if not held.
+            out.classifyAndWrite(*run.hif_map, scan, t.scans, !run.hold_scans);
             t.scan_ms.push_back(ms + out.classify_ms.back());
         }
         else
             t.scan_ms.push_back(ms);
         if (run.hold_scans)
             held.push_back(scan);
-        else
+        else if (!run.online)
             scan.obs->unload();
         ++t.scans;
         progress.update(t.scans);
@@ -300,8 +301,7 @@ void classifyAll(Run& run, std::vector<hif::apps::Scan>& held, Outputs& out, std
         }
         hif::apps::Scan s =
             run.hold_scans ? std::move(held[k]) : read(behind ? *behind : *run.source, k);
-        out.classifyAndWrite(*run.hif_map, s, k);
-        if (!run.hold_scans) s.obs->unload();
+        out.classifyAndWrite(*run.hif_map, s, k, !run.hold_scans);
         progress.update(k + 1);
     }
     progress.finish();

@@ -5,6 +5,7 @@
  */
 #include "hif/CHeightIntervalMap.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -80,24 +81,33 @@ bool CHeightIntervalMap::internal_insertObservation(
 
 namespace
 {
+/** Points [first, end) of `v` in the world frame (`T_w` the sensor's pose), into xs, ys, zs
+ *  from their start: the one transform of observationToWorldPoints() and its chunks. */
+template <typename T>
+void toWorld(const Eigen::Isometry3d& T_w, const PointsView& v, std::size_t first, std::size_t end,
+             T* xs, T* ys, T* zs)
+{
+    for (std::size_t i = first; i < end; ++i)
+    {
+        const Eigen::Vector3d p = T_w * Eigen::Vector3d(v.x[i], v.y[i], v.z[i]);
+        xs[i - first] = static_cast<T>(p.x());
+        ys[i - first] = static_cast<T>(p.y());
+        zs[i - first] = static_cast<T>(p.z());
+    }
+}
+
 template <typename T>
 bool worldPointsOf(const mrpt::obs::CObservation& obs, const mrpt::poses::CPose3D& robotPose,
                    std::vector<T>& xs, std::vector<T>& ys, std::vector<T>& zs)
 {
     SensorPoints sp;
     if (!mrpt_adapter::sensorPoints(obs, sp)) return false;
-    const Eigen::Isometry3d T_w = mrpt_adapter::toIsometry(robotPose + sp.sensor_pose);
     const PointsView& v = sp.view;
     xs.resize(v.size);
     ys.resize(v.size);
     zs.resize(v.size);
-    for (std::size_t i = 0; i < v.size; ++i)
-    {
-        const Eigen::Vector3d p = T_w * Eigen::Vector3d(v.x[i], v.y[i], v.z[i]);
-        xs[i] = static_cast<T>(p.x());
-        ys[i] = static_cast<T>(p.y());
-        zs[i] = static_cast<T>(p.z());
-    }
+    toWorld(mrpt_adapter::toIsometry(robotPose + sp.sensor_pose), v, 0, v.size, xs.data(),
+            ys.data(), zs.data());
     return true;
 }
 }  // namespace
@@ -116,6 +126,25 @@ bool CHeightIntervalMap::observationToWorldPoints(const mrpt::obs::CObservation&
                                                   std::vector<double>& zs)
 {
     return worldPointsOf(obs, robotPose, xs, ys, zs);
+}
+
+bool CHeightIntervalMap::forEachWorldPointsChunk(
+    const mrpt::obs::CObservation& obs, const mrpt::poses::CPose3D& robotPose, std::size_t chunk,
+    const std::function<void(const WorldPointsChunk&)>& fn)
+{
+    if (chunk == 0) throw std::invalid_argument("forEachWorldPointsChunk: a chunk of 0 points");
+    SensorPoints sp;
+    if (!mrpt_adapter::sensorPoints(obs, sp)) return false;
+    const PointsView& v = sp.view;
+    const Eigen::Isometry3d T_w = mrpt_adapter::toIsometry(robotPose + sp.sensor_pose);
+    std::vector<double> xs(std::min(chunk, v.size)), ys(xs.size()), zs(xs.size());
+    for (std::size_t first = 0; first < v.size; first += chunk)
+    {
+        const std::size_t n = std::min(chunk, v.size - first);
+        toWorld(T_w, v, first, first + n, xs.data(), ys.data(), zs.data());
+        fn(WorldPointsChunk{first, n, v.size, xs.data(), ys.data(), zs.data()});
+    }
+    return true;
 }
 
 double CHeightIntervalMap::staticProbability(const mrpt::math::TPoint3D& p) const

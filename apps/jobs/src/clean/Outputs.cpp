@@ -19,26 +19,6 @@
 #include "hif/io/KittiSequence.h"
 #include "hif/io/Labels.h"
 
-namespace
-{
-/** World points of a scan (in double: UTM coordinates keep their millimetres) and their
- *  intensities (0 when the scan has none). */
-void worldPoints(const hif::apps::Scan& scan, std::vector<double>& x, std::vector<double>& y,
-                 std::vector<double>& z, std::vector<float>& intensity)
-{
-    scan.obs->load();
-    if (!hif::CHeightIntervalMap::observationToWorldPoints(*scan.obs, scan.robot_pose, x, y, z))
-        throw std::runtime_error("unsupported observation type " +
-                                 std::string(scan.obs->GetRuntimeClass()->className));
-    intensity.assign(x.size(), 0.0f);
-    if (const auto* pc = dynamic_cast<const mrpt::obs::CObservationPointCloud*>(scan.obs.get()))
-        if (const auto* xyzi =
-                dynamic_cast<const mrpt::maps::CPointsMapXYZI*>(pc->pointcloud.get()))
-            for (std::size_t i = 0; i < x.size() && i < xyzi->size(); ++i)
-                intensity[i] = xyzi->getPointIntensity_fast(i);
-}
-}  // namespace
-
 Outputs::Outputs(const std::string& dir, std::optional<std::size_t> first_frame,
                  std::vector<std::string> static_files, std::vector<std::string> removed_files)
     : removed_cloud_(std::move(removed_files)),
@@ -59,20 +39,26 @@ void Outputs::mergeKept(double voxel, std::vector<std::string> files, std::size_
 }
 
 void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::apps::Scan& scan,
-                               std::size_t k)
+                               std::size_t k, bool unload)
 {
-    auto& [x, y, z] = xyz_;
-    std::vector<float>& intensity = intensity_;
-    worldPoints(scan, x, y, z, intensity);
-    // Classified from the observation and its pose, exactly as it was inserted (the world
-    // points above are what the clouds get).
+    // Classified from the observation and its pose, exactly as it was inserted; the clouds get
+    // its world points (write()).
+    scan.obs->load();
     const auto t0 = Clock::now();
     std::vector<uint8_t> dyn;
     const auto st = map.classify(*scan.obs, scan.robot_pose, dyn);
     classify_ms.push_back(msSince(t0));
-    if (dyn.size() != x.size())
-        throw std::logic_error("classify() and observationToWorldPoints() disagree on the size");
+    writer_.run(
+        [this, scan, dyn = std::move(dyn), st, k, unload]
+        {
+            write(scan, dyn, st, k);
+            if (unload) scan.obs->unload();
+        });
+}
 
+void Outputs::write(const hif::apps::Scan& scan, const std::vector<uint8_t>& dyn,
+                    const hif::ClassifyStats& st, std::size_t k)
+{
     const auto t1 = Clock::now();
     const std::size_t frame = frameOf(scan, k);
     if (scans_written_++ == 0 && scan_numbers_)
@@ -94,43 +80,63 @@ void Outputs::classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::ap
     p.time = times_ && scan.obs->timestamp != INVALID_TIMESTAMP
                  ? mrpt::Clock::toDouble(scan.obs->timestamp)
                  : std::numeric_limits<double>::quiet_NaN();
+    // Intensities where the scan has them (a point cloud with intensity), else 0.
+    const mrpt::maps::CPointsMapXYZI* xyzi = nullptr;
+    if (const auto* pc = dynamic_cast<const mrpt::obs::CObservationPointCloud*>(scan.obs.get()))
+        xyzi = dynamic_cast<const mrpt::maps::CPointsMapXYZI*>(pc->pointcloud.get());
     std::vector<uint32_t> labels(dyn.size());
-    for (std::size_t i = 0; i < dyn.size(); ++i)
+    std::size_t points = 0;
+    // The world points (in double: UTM coordinates keep their millimetres) a chunk at a time.
+    constexpr std::size_t kChunk = 4096;
+    const auto writeChunk = [&](const hif::CHeightIntervalMap::WorldPointsChunk& c)
     {
-        labels[i] = dyn[i] ? hif::io::kLabelMoving : hif::io::kLabelStatic;
-        if (!std::isfinite(x[i]) || !std::isfinite(y[i]) || !std::isfinite(z[i]))
-            continue;  // counted as invalid, labelled moving, not written to a cloud
-        p.x = x[i];
-        p.y = y[i];
-        p.z = z[i];
-        p.intensity = intensity[i];
-        if (dyn[i])
+        if (c.total != dyn.size())
+            throw std::logic_error("classify() and the world points disagree on the size");
+        points += c.size;
+        for (std::size_t j = 0; j < c.size; ++j)
         {
-            removed_cloud_.add(p);
-            if (removed_points_) keepRemoved(p.x, p.y, p.z);
+            const std::size_t i = c.first + j;
+            const bool moving = dyn[i] != 0;
+            labels[i] = moving ? hif::io::kLabelMoving : hif::io::kLabelStatic;
+            if (view_)
+                view_->add(c.xs[j], c.ys[j], static_cast<float>(c.zs[j]),
+                           moving ? hif::apps::TopView::kRemoved : hif::apps::TopView::kKept);
+            if (!std::isfinite(c.xs[j]) || !std::isfinite(c.ys[j]) || !std::isfinite(c.zs[j]))
+                continue;  // counted as invalid, labelled moving, not written to a cloud
+            p.x = c.xs[j];
+            p.y = c.ys[j];
+            p.z = c.zs[j];
+            p.intensity = xyzi && i < xyzi->size() ? xyzi->getPointIntensity_fast(i) : 0.0f;
+            if (moving)
+            {
+                removed_cloud_.add(p);
+                if (removed_points_) keepRemoved(p.x, p.y, p.z);
+            }
+            else
+            {
+                if (kept_cloud_) kept_cloud_->add(p);
+                if (voxels_) voxels_->add(p.x, p.y, p.z, p.intensity);
+            }
+            if (classes_)
+            {
+                const uint8_t* rgb = hif::apps::TopView::kRgb[moving ? hif::apps::TopView::kRemoved
+                                                                     : hif::apps::TopView::kKept];
+                p.red = rgb[0];
+                p.green = rgb[1];
+                p.blue = rgb[2];
+                p.label = moving ? 1 : 0;
+                classes_->add(p);
+            }
         }
-        else
-        {
-            if (kept_cloud_) kept_cloud_->add(p);
-            if (voxels_) voxels_->add(p.x, p.y, p.z, p.intensity);
-        }
-        if (classes_)
-        {
-            const uint8_t* c = hif::apps::TopView::kRgb[dyn[i] ? hif::apps::TopView::kRemoved
-                                                               : hif::apps::TopView::kKept];
-            p.red = c[0];
-            p.green = c[1];
-            p.blue = c[2];
-            p.label = dyn[i] ? 1 : 0;
-            classes_->add(p);
-        }
-    }
+    };
+    if (!hif::CHeightIntervalMap::forEachWorldPointsChunk(*scan.obs, scan.robot_pose, kChunk,
+                                                          writeChunk))
+        throw std::runtime_error("unsupported observation type " +
+                                 std::string(scan.obs->GetRuntimeClass()->className));
+    if (points != dyn.size())
+        throw std::logic_error("classify() and the world points disagree on the size");
     if (voxels_) voxels_->nextScan();
     if (rawlog_) rawlog_->write(scan, dyn);
-    if (view_)
-        for (std::size_t i = 0; i < dyn.size(); ++i)
-            view_->add(x[i], y[i], static_cast<float>(z[i]),
-                       dyn[i] ? hif::apps::TopView::kRemoved : hif::apps::TopView::kKept);
     if (frame < written_.size() && written_[frame])
         throw std::runtime_error("two scans of the input are frame " + std::to_string(frame));
     if (frame >= written_.size()) written_.resize(frame + 1, false);
@@ -196,6 +202,7 @@ std::size_t Outputs::frameOf(const hif::apps::Scan& scan, std::size_t k) const
 
 void Outputs::pictureCovers(const hif::CHeightIntervalMap& map)
 {
+    writer_.wait();
     if (!view_) return;
     const auto pillars = map.grid().sortedPillars();
     if (pillars.empty()) return;
@@ -251,6 +258,7 @@ std::optional<hif::apps::TopView::Picture> Outputs::writePicture(const std::stri
 
 std::size_t Outputs::closeRawlog()
 {
+    writer_.wait();
     if (!rawlog_) return 0;
     rawlog_->close();
     return rawlog_->scans;
@@ -258,6 +266,7 @@ std::size_t Outputs::closeRawlog()
 
 void Outputs::close()
 {
+    writer_.wait();
     if (voxels_)
     {
         VoxelMap v;
@@ -283,6 +292,4 @@ void Outputs::close()
     if (kept_cloud_) kept_cloud_->close();
     removed_cloud_.close();
     if (classes_) classes_->close();
-    for (std::vector<double>& v : xyz_) v = {};  // the last scan's points: no more scans come
-    intensity_ = {};
 }

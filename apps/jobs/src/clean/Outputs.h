@@ -16,6 +16,7 @@
 #include "hif/apps/Cli.h"
 #include "hif/apps/ScanSource.h"
 #include "hif/apps/TopView.h"
+#include "hif/apps/Worker.h"
 #include "hif/io/CloudFiles.h"
 #include "hif/io/VoxelMerger.h"
 
@@ -47,15 +48,17 @@ public:
     Outputs(const std::string& dir, std::optional<std::size_t> first_frame,
             std::vector<std::string> static_files, std::vector<std::string> removed_files);
 
-    /** Classifies scan number `k` against `map` and writes its points and predictions. With
-     *  `window` (offline), the free-space test uses it, the scan being its scan `k`; without,
-     *  the map's own window (online). */
+    /** Classifies scan number `k` against `map`, then writes its points and predictions on
+     *  the outputs' thread while the caller goes on (`scan` is unloaded once written, with
+     *  `unload`). One scan at a time: the call waits for the writing of the scan before, and
+     *  throws what that writing threw (close() throws it for the last scan). */
     void classifyAndWrite(const hif::CHeightIntervalMap& map, const hif::apps::Scan& scan,
-                          std::size_t k);
+                          std::size_t k, bool unload);
     /** Before the first scan is classified: about how many points the kept cloud will get (a
      *  guess: right to the number of digits, it saves a copy of that file). */
     void expectKept(std::size_t points)
     {
+        writer_.wait();
         if (kept_cloud_) kept_cloud_->expectCount(points);
     }
     /** Before the first scan: the kept points also go to `files`, merged per cubic voxel of
@@ -116,15 +119,20 @@ public:
     }
     /** Whether a picture is drawn. */
     [[nodiscard]] bool drawsPicture() const { return view_.has_value(); }
-    /** Completes the cloud files. */
+    /** Waits for the last scan's writing, then completes the cloud files. Every other call
+     *  below but closeRawlog() comes after it. */
     void close();
 
+    /** Counts of the scans written (complete after close()). */
     std::size_t points_in = 0, points_kept = 0, points_removed = 0, points_invalid = 0;
     std::size_t points_near = 0, points_seen_through = 0;
     std::vector<double> classify_ms;
-    double write_ms_total = 0;
+    double write_ms_total = 0;  ///< on the outputs' thread (complete after close())
 
 private:
+    /** classifyAndWrite()'s writing, on the outputs' thread. */
+    void write(const hif::apps::Scan& scan, const std::vector<uint8_t>& dyn,
+               const hif::ClassifyStats& st, std::size_t k);
     /** Keeps a removed point for writeScene(). */
     void keepRemoved(double x, double y, double z);
     /** The number of scan `k` (its predictions file's): the input's, else first_frame + k. */
@@ -137,9 +145,7 @@ private:
     std::optional<VoxelMap> voxel_map_;
     std::string pred_dir_;
     std::optional<std::size_t> first_frame_;
-    std::vector<bool> written_;     ///< frame numbers written, to refuse a second scan of one
-    std::vector<double> xyz_[3];    ///< world x, y, z of the current scan
-    std::vector<float> intensity_;  ///< its intensities
+    std::vector<bool> written_;  ///< frame numbers written, to refuse a second scan of one
     std::optional<hif::apps::TopView> view_;
     /** With collectRemoved(): the removed points, float32 relative to removed_anchor_ (the
      *  first one's metre when it lies 8 km or more from the origin: UTM keeps millimetres). */
@@ -150,4 +156,5 @@ private:
     bool scan_numbers_ = false;
     bool times_ = false;  ///< with scan_numbers_: the scans' times too
     std::size_t scans_written_ = 0;
+    hif::apps::Worker writer_;  ///< last: its job ends before the rest goes
 };

@@ -14,6 +14,7 @@
 #include <mrpt/system/COutputLogger.h>
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -115,6 +116,18 @@ public:
                                          const mrpt::poses::CPose3D& robotPose,
                                          std::vector<double>& xs, std::vector<double>& ys,
                                          std::vector<double>& zs);
+    /** Points `first` to `first + size - 1` of an observation's `total`, in the world frame. */
+    struct WorldPointsChunk
+    {
+        std::size_t first = 0, size = 0, total = 0;
+        const double *xs = nullptr, *ys = nullptr, *zs = nullptr;
+    };
+    /** observationToWorldPoints() in double, given to `fn` a chunk of at most `chunk` points
+     *  at a time, in order (the same coordinates, without holding a whole scan of them).
+     *  Returns false for unsupported types, without calling `fn`. */
+    static bool forEachWorldPointsChunk(const mrpt::obs::CObservation& obs,
+                                        const mrpt::poses::CPose3D& robotPose, std::size_t chunk,
+                                        const std::function<void(const WorldPointsChunk&)>& fn);
     /** @} */
 
     /** @name Options
