@@ -13,6 +13,10 @@
 # A long run (issue 21: at least 128 scans of about 120,000 points) on a synthetic sequence:
 #   build/apps/hif-synthetic-kitti -o /tmp/long -n 160 --sensor os1-128
 #   HIF_BENCH_SEQUENCE=/tmp/long HIF_BENCH_PARTS=command bash scripts/bench.sh
+# Side by side with DUFOMap on the same DynamicMap folder: HIF_BENCH_DUFOMAP=<its dufomap_run>
+# (built outside this repository, e.g. KTH-RPL/dufomap's commit d3df8fc with src/ and assets/
+# of its main) and HIF_BENCH_DUFOMAP_CONFIG=<its assets/config.toml>; it runs
+# $HIF_BENCH_DUFOMAP_RUNS times (default 1: it takes 20-40 x as long), after hif-clean's runs.
 # Extra arguments go to the Google Benchmark, e.g.
 #   bash scripts/bench.sh --benchmark_filter=Insert
 #   HIF_BENCH_PARTS=command bash scripts/bench.sh
@@ -90,3 +94,22 @@ for input in "${INPUTS[@]}"; do
 done
 printf "%-44s %8.2f\n" "process start alone (hif-clean --version)" "$(med start.wall)"
 echo "[bench] wall/alg: the whole run over scans x (insert + classify medians) of its summary"
+
+[ -n "${HIF_BENCH_DUFOMAP:-}" ] || exit 0
+CONFIG=${HIF_BENCH_DUFOMAP_CONFIG:-$(dirname "$HIF_BENCH_DUFOMAP")/../assets/config.toml}
+[ -x "$HIF_BENCH_DUFOMAP" ] || { echo "[bench] $HIF_BENCH_DUFOMAP is not a program" >&2; exit 1; }
+[ -f "$CONFIG" ] || { echo "[bench] DUFOMap's config $CONFIG is missing" >&2; exit 1; }
+for ((r = 1; r <= ${HIF_BENCH_DUFOMAP_RUNS:-1}; r++)); do
+  t=$( { /usr/bin/time -f "%e %U %S %M" "$HIF_BENCH_DUFOMAP" "$DM" "$CONFIG" > /dev/null; } \
+       2>&1 | tail -1)
+  rm -f "$DM/dufomap_output.pcd"
+  read -r wall user sys rss <<< "$t"
+  record dufo.wall "$wall"
+  record dufo.cpu "$(awk -v u="$user" -v s="$sys" 'BEGIN {print u + s}')"
+  record dufo.rss "$(awk -v k="$rss" 'BEGIN {print k / 1024}')"
+done
+dw=$(med dufo.wall)
+printf "%-44s %8.2f %8.2f %9.1f\n" "DUFOMap, DynamicMap folder" "$dw" "$(med dufo.cpu)" \
+  "$(med dufo.rss)"
+echo "[bench] DUFOMap over hif-clean (DynamicMap folder, wall): $(awk -v d="$dw" \
+  -v h="$(med dynamicmap.wall)" 'BEGIN {printf "%.1f", d / h}') x"

@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <future>
 #include <sstream>
 #include <utility>
 
@@ -381,12 +382,15 @@ CleanResult Clean::run(std::ostream& log) const
     run.hif_map->releaseScanBuffers();
     hif::apps::returnFreeHeap();
     const std::size_t rawlog_scans = out.closeRawlog();
-    run.hif_map->saveToFile(dir + "/map.hifmap");
     std::ostringstream title;
     title << "hif-clean " << fs::path(run.input).filename().string() << ": " << t.scans
           << " scans, " << out.points_kept << " points kept, " << out.points_removed
           << " removed (red)";
-    const auto picture = out.writePicture(dir + "/map.png", title.str());
+    // The picture (a PNG to compress) is drawn on a second thread while the map is saved.
+    auto drawn = std::async(std::launch::async,
+                            [&] { return out.writePicture(dir + "/map.png", title.str()); });
+    run.hif_map->saveToFile(dir + "/map.hifmap");
+    const auto picture = drawn.get();
     if (o.scene) out.writeScene(*run.hif_map, dir + "/map.3Dscene");
     t.finish_s = msSince(t_files) / 1000.0;
     t.files_ms = msSince(t_files) + out.write_ms_total;
