@@ -6,6 +6,7 @@
  *         poses that do not belong to the scans are warned about; a single cloud is named.
  */
 #include <gtest/gtest.h>
+#include <mrpt/obs/CObservation.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -13,7 +14,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <set>
 
+#include "app_checks.h"
 #include "app_runner.h"
 #include "hif/io/CloudFiles.h"
 #include "hif/io/KittiSequence.h"
@@ -124,7 +127,13 @@ TEST(SlamFolders, CloudsWithTheirPosesGiveTheKittiFoldersClasses)
     EXPECT_GT(ref_summary["poses_check"]["overlap_above_sensor"].get<double>(),
               ref_summary["poses_check"]["overlap_above_sensor_without_motion"].get<double>());
 
-    r = clean(w + "/pcd_scans", w + "/pcd_out", "", true);
+    r = hif::test::clean(w + "/pcd_scans", w + "/pcd_out",
+                         [&](hif::jobs::CleanOptions& o)
+                         {
+                             o.picture = false;
+                             o.scan_numbers = true;
+                             o.rawlog_out = w + "/pcd_clean.rawlog";
+                         });
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_EQ(predictions(w + "/pcd_out", seq.size()), reference);
     EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
@@ -138,6 +147,27 @@ TEST(SlamFolders, CloudsWithTheirPosesGiveTheKittiFoldersClasses)
         EXPECT_NE(header.find("property float intensity\nproperty uint scan\n"), std::string::npos)
             << header;
         EXPECT_EQ(header.find("time"), std::string::npos) << header;
+    }
+    // A rawlog needs a time for each observation (MRPT's icp-slam refuses one without): each
+    // scan's number, in seconds, and the run says so.
+    EXPECT_NE(r.output.find("the input gives no times, so " + std::to_string(seq.size()) +
+                            " of them have their number for a time"),
+              std::string::npos)
+        << r.output;
+    {
+        const auto objects = hif::test::rawlogObjects(w + "/pcd_clean.rawlog");
+        EXPECT_EQ(objects.size(), 3 * seq.size());  // comment, pose, scan
+        std::set<double> times;
+        for (const auto& o : objects)
+        {
+            const auto obs = std::dynamic_pointer_cast<mrpt::obs::CObservation>(o);
+            ASSERT_TRUE(obs);
+            ASSERT_NE(obs->timestamp, INVALID_TIMESTAMP);
+            times.insert(mrpt::Clock::toDouble(obs->timestamp));
+        }
+        ASSERT_EQ(times.size(), seq.size());
+        EXPECT_EQ(*times.begin(), 0.0);
+        EXPECT_EQ(*times.rbegin(), double(seq.size() - 1));
     }
 
     r = clean(w + "/ply_scans", w + "/ply_out", w + "/ply_poses_kitti.txt");

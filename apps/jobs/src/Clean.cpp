@@ -381,7 +381,7 @@ CleanResult Clean::run(std::ostream& log) const
     // The scans' buffers, kept for reuse, go back before the files and the picture are made.
     run.hif_map->releaseScanBuffers();
     hif::apps::returnFreeHeap();
-    const std::size_t rawlog_scans = out.closeRawlog();
+    const Outputs::RawlogWritten rawlog = out.closeRawlog();
     std::ostringstream title;
     title << "hif-clean " << fs::path(run.input).filename().string() << ": " << t.scans
           << " scans, " << out.points_kept << " points kept, " << out.points_removed
@@ -405,8 +405,12 @@ CleanResult Clean::run(std::ostream& log) const
     if (run.staged_rawlog)
     {
         run.staged_rawlog->commit();
-        log << Clean::kTag << " wrote " << *o.rawlog_out << ": " << rawlog_scans
-            << " scans without their dynamic points" << std::endl;
+        log << Clean::kTag << " wrote " << *o.rawlog_out << ": " << rawlog.scans
+            << " scans without their dynamic points";
+        if (rawlog.untimed > 0)
+            log << "; the input gives no times, so " << rawlog.untimed << " of them have their "
+                << "number for a time, in seconds (MRPT's tools need a time)";
+        log << std::endl;
     }
     std::vector<std::string> extra;
     if (o.classes_ply) extra.emplace_back("classes.ply");

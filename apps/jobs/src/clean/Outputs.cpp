@@ -256,12 +256,12 @@ std::optional<hif::apps::TopView::Picture> Outputs::writePicture(const std::stri
     return view_->write(file, title, false);
 }
 
-std::size_t Outputs::closeRawlog()
+Outputs::RawlogWritten Outputs::closeRawlog()
 {
     writer_.wait();
-    if (!rawlog_) return 0;
+    if (!rawlog_) return {};
     rawlog_->close();
-    return rawlog_->scans;
+    return {rawlog_->scans, rawlog_->untimed};
 }
 
 void Outputs::close()

@@ -94,7 +94,12 @@ public:
         rawlog_.emplace(file, level, name);
     }
     /** The cleaned rawlog, if written: completes it and says how many scans it holds. */
-    std::size_t closeRawlog();
+    struct RawlogWritten
+    {
+        std::size_t scans = 0;
+        std::size_t untimed = 0;  ///< of them, written with their number for a time
+    };
+    RawlogWritten closeRawlog();
     /** Before the first scan: the removed points are also kept in memory (12 bytes each), for
      *  writeScene(). */
     void collectRemoved() { removed_points_.emplace(); }

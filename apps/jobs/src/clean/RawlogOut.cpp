@@ -121,7 +121,12 @@ RawlogOut::RawlogOut(const std::string& file, int level, std::string name) : nam
 void RawlogOut::write(const hif::apps::Scan& scan, const std::vector<uint8_t>& dynamic)
 {
     auto arch = mrpt::serialization::archiveFrom(out_);
-    const auto stamp = scan.obs->timestamp;
+    auto stamp = scan.obs->timestamp;
+    if (stamp == INVALID_TIMESTAMP)
+    {
+        stamp = mrpt::Clock::fromDouble(double(scan.frame.value_or(scans)));
+        ++untimed;
+    }
     if (scan.frame)
     {
         auto c = mrpt::obs::CObservationComment::Create();
@@ -140,6 +145,7 @@ void RawlogOut::write(const hif::apps::Scan& scan, const std::vector<uint8_t>& d
         hif::apps::writeOrThrow(what(), [&] { arch << *p; });
     }
     const auto clean = withoutDynamic(*scan.obs, dynamic);
+    clean->timestamp = stamp;
     hif::apps::writeOrThrow(what(), [&] { arch << *clean; });
     for (const uint8_t d : dynamic) points_dropped += d;
     ++scans;

@@ -18,7 +18,9 @@
  *  CObservationRobotPose (sensor label GROUND_TRUTH) when it has a pose, and a copy of the
  *  observation without the points classified dynamic: a point cloud loses them, a 3D range
  *  scan keeps only its static points (as points, without its range image), a 2D scan marks
- *  their ranges invalid. */
+ *  their ranges invalid. Each gets the scan's time; MRPT's tools need one, so a scan without
+ *  (a DynamicMap folder, clouds whose poses have no times) gets its number in seconds (counted
+ *  in `untimed`). */
 class RawlogOut
 {
 public:
@@ -30,6 +32,7 @@ public:
     void close();
 
     std::size_t scans = 0, points_dropped = 0;
+    std::size_t untimed = 0;  ///< scans written with their number for a time
 
 private:
     /** How a failed write names the rawlog. */
