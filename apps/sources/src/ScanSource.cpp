@@ -145,7 +145,9 @@ mrpt::obs::CObservation::Ptr pointCloudObservation(const io::Cloud& cloud)
     for (std::size_t i = 0; i < cloud.size(); ++i)
     {
         points->setPointFast(i, cloud.x[i], cloud.y[i], cloud.z[i]);
-        points->setPointIntensity(i, cloud.intensity[i]);
+        // An XYZI map's "colour" is its intensity (MRPT's inline setter, without the bounds
+        // check of setPointIntensity(): the map was just sized to the cloud).
+        points->setPointColor_fast(i, cloud.intensity[i], 0.0f, 0.0f);
     }
     auto obs = mrpt::obs::CObservationPointCloud::Create();
     obs->sensorLabel = "LIDAR";
