@@ -265,8 +265,8 @@ std::vector<hif::apps::Scan> insertAll(Run& run, Outputs& out, Timings& t, std::
  *  given to the map's test in their order, and scan k is classified once scan k +
  *  free_space_window is in. The input is read again for the test, each scan dropped once its
  *  image is made, and once more, free_space_window scans behind, to classify: holding the scans
- *  in between would cost as many scans of memory, and the readers have time to spare. With
- *  --hold-scans, the scans come from memory. */
+ *  in between would cost as many scans of memory, and reading a scan (on the readers' threads)
+ *  costs less than classifying it. With --hold-scans, the scans come from memory. */
 void classifyAll(Run& run, std::vector<hif::apps::Scan>& held, Outputs& out, std::size_t scans)
 {
     hif::apps::Progress progress(Clean::kTag, "classifying", scans, run.show_progress);
