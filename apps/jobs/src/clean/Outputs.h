@@ -124,8 +124,8 @@ public:
     }
     /** Whether a picture is drawn. */
     [[nodiscard]] bool drawsPicture() const { return view_.has_value(); }
-    /** Waits for the last scan's writing, then completes the cloud files. Every other call
-     *  below but closeRawlog() comes after it. */
+    /** Waits for the last scan's writing (throwing what it threw), then completes the cloud
+     *  files. */
     void close();
 
     /** Counts of the scans written (complete after close()). */
