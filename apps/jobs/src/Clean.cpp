@@ -377,20 +377,22 @@ CleanResult Clean::run(std::ostream& log) const
     }
 
     const auto t_files = Clock::now();
-    out.close();
-    // The scans' buffers, kept for reuse, go back before the files and the picture are made.
+    // Once the last scan is written (and the rawlog closed), the scans' buffers, kept for
+    // reuse, go back before the files and the picture are made.
+    const Outputs::RawlogWritten rawlog = out.closeRawlog();
     run.hif_map->releaseScanBuffers();
     hif::apps::returnFreeHeap();
-    const Outputs::RawlogWritten rawlog = out.closeRawlog();
+    // The map, serialized and compressed, is saved on a second thread while the clouds are
+    // finished (the copies of their bodies) and the picture is drawn.
+    auto saved = std::async(std::launch::async,
+                            [&] { run.hif_map->saveToFile(dir + "/map.hifmap"); });
+    out.close();
     std::ostringstream title;
     title << "hif-clean " << fs::path(run.input).filename().string() << ": " << t.scans
           << " scans, " << out.points_kept << " points kept, " << out.points_removed
           << " removed (red)";
-    // The picture (a PNG to compress) is drawn on a second thread while the map is saved.
-    auto drawn = std::async(std::launch::async,
-                            [&] { return out.writePicture(dir + "/map.png", title.str()); });
-    run.hif_map->saveToFile(dir + "/map.hifmap");
-    const auto picture = drawn.get();
+    const auto picture = out.writePicture(dir + "/map.png", title.str());
+    saved.get();
     if (o.scene) out.writeScene(*run.hif_map, dir + "/map.3Dscene");
     t.finish_s = msSince(t_files) / 1000.0;
     t.files_ms = msSince(t_files) + out.write_ms_total;
