@@ -384,8 +384,8 @@ CleanResult Clean::run(std::ostream& log) const
     hif::apps::returnFreeHeap();
     // The map, serialized and compressed, is saved on a second thread while the clouds are
     // finished (the copies of their bodies) and the picture is drawn.
-    auto saved = std::async(std::launch::async,
-                            [&] { run.hif_map->saveToFile(dir + "/map.hifmap"); });
+    auto saved =
+        std::async(std::launch::async, [&] { run.hif_map->saveToFile(dir + "/map.hifmap"); });
     out.close();
     std::ostringstream title;
     title << "hif-clean " << fs::path(run.input).filename().string() << ": " << t.scans
