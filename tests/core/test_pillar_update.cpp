@@ -814,6 +814,74 @@ std::vector<bool> staticAfterOneSparseScan(double slope, const std::vector<Eigen
 }
 }  // namespace
 
+namespace
+{
+/** One scan of the 16-ring LiDAR of staticAfterOneSparseScan() over flat ground that returns
+ *  only to `reach` metres (ring -1 would land at 99.7 m), with a low crate (0.8 m high, its face
+ *  at x = 25 m, azimuths 4 to 8 degrees) and, if `far_wall`, a wall 150 m away at azimuths -10
+ *  to -8 degrees that does return (the scan's farthest return). Is each of `probes` static
+ *  once the scan is inserted (offline p_empty_init, ground seen once on)? */
+std::vector<bool> staticAfterOneScanOutOfReach(double reach, bool far_wall,
+                                               const std::vector<Eigen::Vector3d>& probes)
+{
+    std::vector<double> el;
+    for (int e = -15; e <= 15; e += 2) el.push_back(e);
+    Params prm;
+    prm.p_empty_init = 0.42;
+    prm.ground_max_slope_deg = 5.0;
+    PillarGrid grid(GridGeometry(), prm);
+    grid.setSensorModel(SensorModel::fromBeams(el, 0.2));
+    std::vector<float> x, y, z;
+    const double ground = -kSensorZ;
+    for (int a = -50; a <= 50; ++a)
+    {
+        const double az = a * 0.2 * M_PI / 180.0, c = std::cos(az);
+        for (const double e_deg : el)
+        {
+            const double t = std::tan(e_deg * M_PI / 180.0);
+            double d = std::numeric_limits<double>::infinity();
+            if (t < 0) d = ground / t;
+            if (a >= 20 && a <= 40 && 25.0 * t >= ground && 25.0 * t <= ground + 0.8)
+                d = std::min(d, 25.0 / c);  // the crate's face
+            if (far_wall && a <= -40) d = std::min(d, 150.0 / c);
+            if (d * std::sqrt(1.0 + t * t) > (far_wall && a <= -40 ? 200.0 : reach)) continue;
+            x.push_back(float(d * c));
+            y.push_back(float(d * std::sin(az)));
+            z.push_back(float(d * t));
+        }
+    }
+    grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+    std::vector<bool> out;
+    for (const Eigen::Vector3d& p : probes) out.push_back(grid.isStatic(p.x(), p.y(), p.z()));
+    return out;
+}
+}  // namespace
+
+// A sensor's last ring on the ground: the next beam up returns nothing because the ground it
+// would meet lies beyond the sensor's reach. That is what ground running on gives, so one
+// sighting keeps it, but only when the scan reached no farther than where that beam would
+// land, and only on the line of the ground below it: a crate there, 0.4 m above that line with
+// nothing above it either, still needs a second sighting.
+TEST(GroundSeenOnce, TheLastRingOnTheGroundIsKeptWhenTheNextBeamUpLandsOutOfReach)
+{
+    const auto rad = [](double deg) { return deg * M_PI / 180.0; };
+    const double last = kSensorZ / std::tan(rad(3.0));  // ring -3: 33.2 m
+    const auto at = [&](double d, double az_deg, double z)
+    { return Eigen::Vector3d(d * std::cos(rad(az_deg)), d * std::sin(rad(az_deg)), z); };
+    const std::vector<Eigen::Vector3d> probes{
+        at(last, -2.0, -kSensorZ),                         // the ground, last ring
+        at(25.0, 6.0, 25.0 * std::tan(rad(-3.0)) + 0.01),  // the crate (ring -3)
+    };
+    const std::vector<bool> out_of_reach = staticAfterOneScanOutOfReach(60.0, false, probes);
+    EXPECT_TRUE(out_of_reach[0]) << "ground whose next beam up lands beyond 60 m of reach";
+    EXPECT_FALSE(out_of_reach[1]) << "a crate off the ground's line";
+    // The same, but the scan reaches a wall 150 m away: ring -1 could have returned from the
+    // ground at 99.7 m, and did not (the ground does not run on that way, as far as it shows).
+    const std::vector<bool> reached = staticAfterOneScanOutOfReach(60.0, true, probes);
+    EXPECT_FALSE(reached[0]);
+    EXPECT_FALSE(reached[1]);
+}
+
 // A sparse LiDAR crosses ground 33 m away with one ring in one scan; offline settings
 // (p_empty_init 0.42) want a second sighting of every height, which that ground never gets in a
 // short clip. Ground that runs on both ways along its beams is kept after one, and so is ground

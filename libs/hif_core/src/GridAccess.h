@@ -31,6 +31,7 @@ struct Workspace
     PillarUpdater updater{LogOddsModel(), 1};  ///< reset at every insertion
     std::vector<BeamReturn> range_image;       ///< the scan's returns (miss gates)
     std::vector<uint8_t> returned_blocks;      ///< of range_image (buildReturnImage())
+    float farthest_return = 0.0f;              ///< of range_image: its farthest return, metres
     std::vector<uint8_t> hit;                  ///< see-through misses: pillars the scan hit
     /** BeamGate::runs of the scan's image (ground seen once), and the scan's generation. */
     std::unique_ptr<std::atomic<uint8_t>[]> ground_runs;

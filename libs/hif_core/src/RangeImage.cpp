@@ -144,12 +144,19 @@ void fillImage(const RangeImageLayout& l, const PointsView& pts, std::vector<T>&
 }
 }  // namespace
 
-void buildReturnImage(const RangeImageLayout& l, const PointsView& pts,
-                      std::vector<BeamReturn>& img, std::vector<uint8_t>& blocks)
+float buildReturnImage(const RangeImageLayout& l, const PointsView& pts,
+                       std::vector<BeamReturn>& img, std::vector<uint8_t>& blocks)
 {
+    float farthest = 0.0f;
     fillImage(
         l, pts, img, BeamReturn{},
-        [](BeamReturn& cell, float r, float tan_el) { cell.keepNearer(r, tan_el); }, &blocks);
+        [&farthest](BeamReturn& cell, float r, float tan_el)
+        {
+            cell.keepNearer(r, tan_el);
+            if (r < 655.34f) farthest = std::max(farthest, r);  // what a cell can hold
+        },
+        &blocks);
+    return farthest;
 }
 
 void buildRangeImageCm(const RangeImageLayout& l, const PointsView& pts, std::vector<uint16_t>& img)

@@ -324,11 +324,12 @@ struct BeamGate
                 const double z = (sensor_z + p.place.up) / res;
                 if (std::abs(p.place.along - a.d) > reach || z < lo || z >= hi) continue;
                 const Found above = nextReturn(p, 1);
-                if (!above.found ||
-                    !(levelWith(above.place, p.place, slope_tan, 0.0) ||
-                      (above.place.along - p.place.along > reach && above.place.up >= p.place.up)))
-                    return false;
                 const Found below = nextReturn(p, -1);
+                if (above.found ? !(levelWith(above.place, p.place, slope_tan, 0.0) ||
+                                    (above.place.along - p.place.along > reach &&
+                                     above.place.up >= p.place.up))
+                                : !groundOutOfReachAbove(p, below, step))
+                    return false;
                 if (below.found ? !levelWith(p.place, below.place, slope_tan, 0.0) ||
                                       !runDownIsLevel(below, slope_tan, step)
                                 : gapBelow(p))
@@ -345,6 +346,8 @@ struct BeamGate
      *  Atomic: the gates of one scan run on several threads, and find the same values. */
     std::atomic<uint8_t>* runs = nullptr;
     uint8_t generation = 0;
+    /** For onGround(): the range of the scan's farthest return, metres (0: unknown). */
+    float farthest_return = 0.0f;
 
 private:
     /** Where the pillar's axis lies in the image between two heights. */
@@ -580,6 +583,32 @@ private:
         const double run = far.along - near.along;
         return run > 0.0 && std::abs(far.up - near.up) <= run * slope_tan + step;
     }
+    /** For onGround(), when the beam above `p` returned nothing: whether that is what ground
+     *  running on would give. `p` lies on the line of the two returns below it (within `step`),
+     *  and the next beam up would meet that line, carried
+     *  on beyond `p`, farther than the scan's farthest return (`farthest_return`; or never
+     *  meet it): a sensor's last rings on the ground, whose next beam up lands beyond its
+     *  reach. The next beam up is one gap of the sensor's beams (PillarGrid::beamGapSlope())
+     *  above `p`'s. Something standing on the ground is off that line by more than a kerb. */
+    [[nodiscard]] bool groundOutOfReachAbove(const Found& p, const Found& below, double step) const
+    {
+        if (!below.found || !grid || farthest_return <= 0.0f) return false;
+        const Found below2 = nextReturn(below, -1);
+        if (!below2.found) return false;
+        const double run1 = p.place.along - below.place.along;
+        const double run2 = below.place.along - below2.place.along;
+        if (!(run1 > 0.0 && run2 > 0.0)) return false;
+        const double s2 = (below.place.up - below2.place.up) / run2;  // the ground's slope
+        if (std::abs(p.place.up - (below.place.up + s2 * run1)) > step) return false;
+        const double s1 = (p.place.up - below.place.up) / run1;  // on towards p and beyond
+        const double t_p = p.place.up / p.place.along;
+        const double t_up = t_p + grid->beamGapSlope(t_p);  // the next beam up, about
+        // Above the line at p (by a beam spacing); it meets the line farther on only if it
+        // falls faster, where t_up * D = p.up + s1 * (D - p.along).
+        if (t_up >= s1) return true;
+        const double d = (p.place.up - s1 * p.place.along) / (t_up - s1);
+        return d * std::sqrt(1.0 + t_up * t_up) > farthest_return;
+    }
 
     [[nodiscard]] const BeamReturn* rowOf(int row) const
     {
@@ -662,10 +691,11 @@ inline double pillarReach(double size, double dx, double dy)
 
 /** Fills `img` (layout `l`, row-major) with the nearest return of `points` (sensor frame) in
  *  every cell, BeamReturn{} (no return) where none falls, and `blocks` with a byte per block
- *  of kBlockCols cells (of the flattened image): 1 where any return fell in it.
+ *  of kBlockCols cells (of the flattened image): 1 where any return fell in it. Returns the
+ *  range of the scan's farthest return in the image, metres (0 for none).
  *  Four points at a time with AVX when useAvx() (the same bits as one at a time). */
-void buildReturnImage(const RangeImageLayout& l, const PointsView& points,
-                      std::vector<BeamReturn>& img, std::vector<uint8_t>& blocks);
+float buildReturnImage(const RangeImageLayout& l, const PointsView& points,
+                       std::vector<BeamReturn>& img, std::vector<uint8_t>& blocks);
 
 /** "No return" in a range image in centimetres. */
 constexpr uint16_t kNoReturnCm = 0xFFFF;

@@ -47,7 +47,8 @@ bool needsScanImage(const Params& p) { return p.miss_needs_beam || p.see_through
 void buildScanImage(PillarGrid& grid, const PointsView& pts)
 {
     Workspace& ws = GridAccess::workspace(grid);
-    buildReturnImage(grid.imageLayout(), pts, ws.range_image, ws.returned_blocks);
+    ws.farthest_return =
+        buildReturnImage(grid.imageLayout(), pts, ws.range_image, ws.returned_blocks);
 }
 
 void seeThroughMisses(PillarGrid& grid, const Eigen::Isometry3d& T, const ScanBuckets& scan)

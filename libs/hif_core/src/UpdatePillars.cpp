@@ -69,6 +69,7 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
                       ws.returned_blocks.data()};
         gate.runs = ws.ground_runs.get();
         gate.generation = ws.ground_generation;
+        gate.farthest_return = ws.farthest_return;
         return gate;
     };
 
