@@ -760,49 +760,34 @@ TEST(SeeThroughMisses, RingsThatReturnedNothingWhereAHeightSeenOnceWasShowItGone
 
 namespace
 {
-/** One scan of a 16-ring LiDAR (rings every 2 degrees from -15 to +15, 0.2 degrees apart in
- *  azimuth) kSensorZ above flat ground (ring -5 lands at 19.9 m), over azimuths -10 to +10
- *  degrees, with a car's rear (a face at x = 20.1 m, y within 1 m, up to 1.5 m above the
- *  ground), a raised platform (1 m high, from x = 18 m to 50 m, at azimuths 6 to 10 degrees)
- *  and a wall at x = 16 m (azimuths -10 to -6 degrees); a wall 100 m away stops the beams above.
- *  Is each of `probes` static once the scan is inserted with ground_max_slope_deg `slope`? */
 constexpr double kSensorZ = 1.7410;  // 19.9 m * tan(5 degrees)
 
-std::vector<bool> staticAfterOneSparseScan(double slope, const std::vector<Eigen::Vector3d>& probes)
+/** One scan of a 16-ring LiDAR (rings every 2 degrees from -15 to +15, 0.2 degrees apart in
+ *  azimuth, over azimuths -10 to +10 degrees) kSensorZ above flat ground (ring -5 lands at
+ *  19.9 m): `reach(a, t)` is the horizontal distance at which the beam of azimuth step `a` (of
+ *  0.2 degrees) and elevation tangent `t` returns, infinity for none. Is each of `probes` static
+ *  once the scan is inserted (offline p_empty_init) with ground_max_slope_deg `slope`? */
+template <class Reach>
+std::vector<bool> staticAfterOneRingScan(double slope, const Reach& reach,
+                                         const std::vector<Eigen::Vector3d>& probes)
 {
     std::vector<double> el;
     for (int e = -15; e <= 15; e += 2) el.push_back(e);
-    const SensorModel model = SensorModel::fromBeams(el, 0.2);
     Params prm;
     prm.p_empty_init = 0.42;  // offline: a height seen once needs a second sighting
     prm.ground_max_slope_deg = slope;
     PillarGrid grid(GridGeometry(), prm);
-    grid.setSensorModel(model);
+    grid.setSensorModel(SensorModel::fromBeams(el, 0.2));
     std::vector<float> x, y, z;
-    const double ground = -kSensorZ;
     for (int a = -50; a <= 50; ++a)
     {
-        const double az = a * 0.2 * M_PI / 180.0, c = std::cos(az);
+        const double az = a * 0.2 * M_PI / 180.0;
         for (const double e_deg : el)
         {
             const double t = std::tan(e_deg * M_PI / 180.0);
-            // Horizontal distance along the beam to the first surface it meets.
-            double d = 100.0 / c;  // the far wall
-            if (t < 0) d = std::min(d, ground / t);
-            const auto face = [&](double at, double z0, double z1)
-            {
-                const double r = at / c;
-                if (r * t >= z0 && r * t <= z1) d = std::min(d, r);
-            };
-            if (std::abs(20.1 * std::tan(az)) < 1.0) face(20.1, ground, ground + 1.5);  // the car
-            if (a >= 30)  // the platform: its face, then its top
-            {
-                face(18.0, ground, ground + 1.0);
-                const double top = t < 0 ? (ground + 1.0) / t : 1e9;
-                if (top * c >= 18.0 && top * c <= 50.0) d = std::min(d, top);
-            }
-            if (a <= -30) face(16.0, ground, 5.0);  // the wall
-            x.push_back(float(d * c));
+            const double d = reach(a, t);
+            if (!std::isfinite(d)) continue;
+            x.push_back(float(d * std::cos(az)));
             y.push_back(float(d * std::sin(az)));
             z.push_back(float(d * t));
         }
@@ -812,48 +797,56 @@ std::vector<bool> staticAfterOneSparseScan(double slope, const std::vector<Eigen
     for (const Eigen::Vector3d& p : probes) out.push_back(grid.isStatic(p.x(), p.y(), p.z()));
     return out;
 }
-}  // namespace
 
-namespace
+/** staticAfterOneRingScan() with a car's rear (a face at x = 20.1 m, y within 1 m, up to 1.5 m
+ *  above the ground), a raised platform (1 m high, from x = 18 m to 50 m, at azimuths 6 to 10
+ *  degrees) and a wall at x = 16 m (azimuths -10 to -6 degrees); a wall 100 m away stops the
+ *  beams above. */
+std::vector<bool> staticAfterOneSparseScan(double slope, const std::vector<Eigen::Vector3d>& probes)
 {
-/** One scan of the 16-ring LiDAR of staticAfterOneSparseScan() over flat ground that returns
- *  only to `reach` metres (ring -1 would land at 99.7 m), with a low crate (0.8 m high, its face
- *  at x = 25 m, azimuths 4 to 8 degrees) and, if `far_wall`, a wall 150 m away at azimuths -10
- *  to -8 degrees that does return (the scan's farthest return). Is each of `probes` static
- *  once the scan is inserted (offline p_empty_init, ground seen once on)? */
-std::vector<bool> staticAfterOneScanOutOfReach(double reach, bool far_wall,
-                                               const std::vector<Eigen::Vector3d>& probes)
-{
-    std::vector<double> el;
-    for (int e = -15; e <= 15; e += 2) el.push_back(e);
-    Params prm;
-    prm.p_empty_init = 0.42;
-    prm.ground_max_slope_deg = 5.0;
-    PillarGrid grid(GridGeometry(), prm);
-    grid.setSensorModel(SensorModel::fromBeams(el, 0.2));
-    std::vector<float> x, y, z;
     const double ground = -kSensorZ;
-    for (int a = -50; a <= 50; ++a)
+    const auto reach = [&](int a, double t)
     {
         const double az = a * 0.2 * M_PI / 180.0, c = std::cos(az);
-        for (const double e_deg : el)
+        double d = 100.0 / c;  // the far wall
+        if (t < 0) d = std::min(d, ground / t);
+        const auto face = [&](double at, double z0, double z1)
         {
-            const double t = std::tan(e_deg * M_PI / 180.0);
-            double d = std::numeric_limits<double>::infinity();
-            if (t < 0) d = ground / t;
-            if (a >= 20 && a <= 40 && 25.0 * t >= ground && 25.0 * t <= ground + 0.8)
-                d = std::min(d, 25.0 / c);  // the crate's face
-            if (far_wall && a <= -40) d = std::min(d, 150.0 / c);
-            if (d * std::sqrt(1.0 + t * t) > (far_wall && a <= -40 ? 200.0 : reach)) continue;
-            x.push_back(float(d * c));
-            y.push_back(float(d * std::sin(az)));
-            z.push_back(float(d * t));
+            const double r = at / c;
+            if (r * t >= z0 && r * t <= z1) d = std::min(d, r);
+        };
+        if (std::abs(20.1 * std::tan(az)) < 1.0) face(20.1, ground, ground + 1.5);  // the car
+        if (a >= 30)  // the platform: its face, then its top
+        {
+            face(18.0, ground, ground + 1.0);
+            const double top = t < 0 ? (ground + 1.0) / t : 1e9;
+            if (top * c >= 18.0 && top * c <= 50.0) d = std::min(d, top);
         }
-    }
-    grid.insertScan({x.data(), y.data(), z.data(), x.size()});
-    std::vector<bool> out;
-    for (const Eigen::Vector3d& p : probes) out.push_back(grid.isStatic(p.x(), p.y(), p.z()));
-    return out;
+        if (a <= -30) face(16.0, ground, 5.0);  // the wall
+        return d;
+    };
+    return staticAfterOneRingScan(slope, reach, probes);
+}
+
+/** staticAfterOneRingScan() (ground seen once on) over ground that returns only to `range`
+ *  metres (ring -1 would land at 99.7 m), with a low crate (0.8 m high, its face at x = 25 m,
+ *  azimuths 4 to 8 degrees) and, if `far_wall`, a wall 150 m away at azimuths -10 to -8 degrees
+ *  that does return (the scan's farthest return). */
+std::vector<bool> staticAfterOneScanOutOfReach(double range, bool far_wall,
+                                               const std::vector<Eigen::Vector3d>& probes)
+{
+    const auto reach = [&](int a, double t)
+    {
+        const double c = std::cos(a * 0.2 * M_PI / 180.0);
+        const double inf = std::numeric_limits<double>::infinity();
+        double d = t < 0 ? -kSensorZ / t : inf;
+        if (a >= 20 && a <= 40 && 25.0 * t >= -kSensorZ && 25.0 * t <= 0.8 - kSensorZ)
+            d = std::min(d, 25.0 / c);  // the crate's face
+        if (far_wall && a <= -40) d = std::min(d, 150.0 / c);
+        const bool wall = far_wall && a <= -40;
+        return d * std::sqrt(1.0 + t * t) > (wall ? 200.0 : range) ? inf : d;
+    };
+    return staticAfterOneRingScan(5.0, reach, probes);
 }
 }  // namespace
 
