@@ -229,7 +229,8 @@ TEST(FreeSpaceTest, AWalkerIsRemovedGroundWallAndPoleStay)
 // The bicycle's low part reaches 0.6 m beyond its rider on both sides, into pillars where it
 // is all there is above the ground: 0.3 m above the clearance, too little to make an object
 // there (free_space_min_extent 0.5). Next to a pillar of a mover (here the map already removes
-// the rider, which runs into its own shadow), it is tested as part of it.
+// the rider, which runs into its own shadow), it is tested as part of it; and so is what lies
+// under the rider, in the rider's own pillars, where the map kept it.
 TEST(FreeSpaceTest, TheLowPartsOfAMoverGoWithItIntoTheNextPillars)
 {
     for (const double ego : {0.0, 0.3})
@@ -239,10 +240,12 @@ TEST(FreeSpaceTest, TheLowPartsOfAMoverGoWithItIntoTheNextPillars)
         const Removed without = offline(scans, freeSpaceParams(), false);
         const Removed with = offline(scans, freeSpaceParams(), true);
         // Measured: the map alone removes 16 % (standing) and 36 % (moving) of the wheels, with
-        // the test 56 % and 79 % (the same as the map alone when only the pillars the test
-        // itself shows gone count as a mover's); the rider 98-100 % either way.
+        // the test 87 % either way (56 % and 79 % with the neighbours only, the map alone's
+        // when only the pillars the test itself shows gone count as a mover's); the rider
+        // 99.7-100 % (98.6-100 % without its own pillars).
         EXPECT_GT(with.n[kWheels], 300u);
         EXPECT_GE(with.pct(kRider), 95.0);
+        EXPECT_GE(with.pct(kWheels), 80.0);
         EXPECT_GE(with.pct(kWheels), without.pct(kWheels) + 30.0);
         for (const What w : {kGround, kWall, kPole, kHedge, kLow})
             EXPECT_EQ(with.removed[w], without.removed[w]) << "kind " << int(w);

@@ -426,14 +426,15 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     }
     // A mover (shown gone here, or by the map) reaches into the pillars around it with its
     // lowest parts (feet, wheels, bumpers): too little there to make an object of their own,
-    // they are tested as part of it.
+    // they are tested as part of it. So is what the map kept of it in its own pillar (a pillar
+    // whose points the map found dynamic, but for too little to test alone: the wheels below a
+    // rider, a walker's last ring).
     std::sort(gone.begin(), gone.end());
-    auto nextToGone = [&](PillarIndex idx)
+    auto inOrNextToGone = [&](PillarIndex idx)
     {
         for (int dm = -1; dm <= 1; ++dm)
             for (int dn = -1; dn <= 1; ++dn)
-                if ((dm != 0 || dn != 0) &&
-                    std::binary_search(
+                if (std::binary_search(
                         gone.begin(), gone.end(),
                         std::pair<int64_t, int64_t>(int64_t{idx.m} + dm, int64_t{idx.n} + dn)))
                     return true;
@@ -441,7 +442,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     };
     for (const std::size_t p : small)
     {
-        if (!nextToGone(unpackKey(scan.keys[p]))) continue;
+        if (!inOrNextToGone(unpackKey(scan.keys[p]))) continue;
         const auto found = object.entries(scan, p, pts, is_dynamic, tested);
         if (reachesShare(tested, prm.free_space_fraction, verdict)) mark(p, found.low);
     }
