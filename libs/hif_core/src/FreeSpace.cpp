@@ -219,6 +219,9 @@ struct ObjectTest
     }
 };
 
+/** Judges in a row that must show a surface moving steadily along the beams (markSeenThrough). */
+constexpr std::size_t kSteadyJudges = 3;
+
 /** Gone points needed among `judged` for a share `fraction`: at least one. */
 std::size_t needed(double fraction, std::size_t judged)
 {
@@ -365,6 +368,47 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             drifted(
                 judges.size() - self_pos,
                 [&](std::size_t k) -> const Judge& { return judges[self_pos + k]; }, settled_after))
+            return Verdict::Gone;
+        // A surface that moved steadily along the beams, either way, by less than the margin
+        // (a person walking along the line of sight, seen occupied by every judge): walking
+        // out from the nearest judge in time, each one's beam toward the point returned on the
+        // same side of it as the others and no nearer to it than the previous one, within the
+        // margin of the previous one (the same surface), kSteadyJudges of them at least, the
+        // last beyond half the margin (its share for range noise and pose error; what a beam
+        // on a slanted surface adds does not grow judge after judge). A static surface's
+        // offsets scatter around the point; foliage's jitter in and out.
+        auto steady = [&](std::size_t count, auto judgeAt)
+        {
+            double previous = 0.0;
+            int side = 0;
+            for (std::size_t k = 0; k < count; ++k)
+            {
+                const Judge& j = judgeAt(k);
+                if (!parallax.inView(j, p_w, from_self, self_dist)) return false;
+                const auto o =
+                    beamOffset(j, p_w, prm.free_space_margin, prm.free_space_margin_per_m);
+                if (!o || std::abs(o->offset - previous) > o->margin ||
+                    std::abs(o->offset) < std::abs(previous))
+                    return false;
+                const int s = (o->offset > 0.0) - (o->offset < 0.0);
+                if (s != 0 && side != 0 && s != side) return false;
+                if (s != 0) side = s;
+                previous = o->offset;
+                if (k + 1 >= kSteadyJudges &&
+                    std::abs(previous) > o->margin - 0.5 * prm.free_space_margin)
+                {
+                    judged = true;
+                    return true;
+                }
+            }
+            return false;
+        };
+        if ((settled_before > 0 &&
+             steady(self_pos,
+                    [&](std::size_t k) -> const Judge& { return judges[self_pos - 1 - k]; })) ||
+            (settled_after > 0 &&
+             steady(judges.size() - self_pos,
+                    [&](std::size_t k) -> const Judge& { return judges[self_pos + k]; })))
             return Verdict::Gone;
         return judged ? Verdict::Held : Verdict::Unjudged;
     };
