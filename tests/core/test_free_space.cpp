@@ -118,32 +118,44 @@ What cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, int i, double& ran
     return what;
 }
 
-/** Ten scans of a sensor that stands still (or moves `ego` m per scan along x), rows 0.4
- *  degrees apart from -20 to +4 degrees, columns 0.2 degrees apart over the 120 degrees ahead;
- *  the person crosses at 0.15 m per scan. */
+/** One scan of a sensor at `pose` (a translation), rows 0.4 degrees apart from -20 to +4
+ *  degrees, columns 0.2 degrees apart over `half_az` degrees on each side of +x: `cast(d, r)`
+ *  gives what the ray of direction `d` hits first (kNothing: no return) and its range `r`. */
+template <typename Cast>
+Scan rayScan(const Eigen::Isometry3d& pose, double half_az, Cast&& cast)
+{
+    Scan s;
+    s.pose = pose;
+    for (double el = -20.0; el <= 4.0; el += 0.4)
+        for (double az = -half_az; az <= half_az; az += 0.2)
+        {
+            const double e = el * M_PI / 180.0, a = az * M_PI / 180.0;
+            const Eigen::Vector3d d(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a),
+                                    std::sin(e));
+            double r = 0;
+            const What w = cast(d, r);
+            if (w == kNothing) continue;
+            const Eigen::Vector3d p = d * r;  // sensor frame (no rotation)
+            s.x.push_back(float(p.x()));
+            s.y.push_back(float(p.y()));
+            s.z.push_back(float(p.z()));
+            s.what.push_back(w);
+        }
+    return s;
+}
+
+/** Ten scans of a sensor that stands still (or moves `ego` m per scan along x) over the 120
+ *  degrees ahead (rayScan()); the person crosses at 0.15 m per scan. */
 std::vector<Scan> makeScans(double ego = 0.0)
 {
-    std::vector<Scan> scans(10);
+    std::vector<Scan> scans;
     for (int i = 0; i < 10; ++i)
     {
-        Scan& s = scans[i];
-        s.pose.translation() = Eigen::Vector3d(ego * i, 0.0, 0.0);
-        const Eigen::Vector3d o = s.pose.translation();
-        for (double el = -20.0; el <= 4.0; el += 0.4)
-            for (double az = -60.0; az <= 60.0; az += 0.2)
-            {
-                const double e = el * M_PI / 180.0, a = az * M_PI / 180.0;
-                const Eigen::Vector3d d(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a),
-                                        std::sin(e));
-                double r = 0;
-                const What w = cast(o, d, i, r);
-                if (w == kNothing) continue;
-                const Eigen::Vector3d p = d * r;  // sensor frame (no rotation)
-                s.x.push_back(float(p.x()));
-                s.y.push_back(float(p.y()));
-                s.z.push_back(float(p.z()));
-                s.what.push_back(w);
-            }
+        Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+        pose.translation() = Eigen::Vector3d(ego * i, 0.0, 0.0);
+        scans.push_back(rayScan(pose, 60.0,
+                                [&](const Eigen::Vector3d& d, double& r)
+                                { return cast(pose.translation(), d, i, r); }));
     }
     return scans;
 }
@@ -375,31 +387,24 @@ TEST(FreeSpaceTest, AWalkerIsShownByItsLeadingEdgeWhicheverWayTheSweepGoes)
 // The ground and the wall behind stay (their beams scatter around the point).
 TEST(FreeSpaceTest, APersonWalkingAlongTheLineOfSightIsShownByASteadyDrift)
 {
-    std::vector<Scan> scans(10);
+    std::vector<Scan> scans;
     for (int i = 0; i < 10; ++i)
-        for (double el = -20.0; el <= 4.0; el += 0.4)
-            for (double az = -30.0; az <= 30.0; az += 0.2)
-            {
-                const double e = el * M_PI / 180.0, a = az * M_PI / 180.0;
-                const Eigen::Vector3d d(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a),
-                                        std::sin(e));
-                double range = 60.0;
-                What what = kNothing;
-                auto take = [&](double s, What w)
-                {
-                    if (s > 1e-6 && s < range) range = s, what = w;
-                };
-                if (d.z() < 0) take(kGroundZ / d.z(), kGround);
-                if (d.x() > 0) take(25.5 / d.x(), kWall);
-                const double x = 15.2 - 0.08 * i;
-                hitBox(Eigen::Vector3d::Zero(), d, {x - 0.2, 0.8, kGroundZ},
-                       {x + 0.2, 1.2, kGroundZ + 1.7}, kPerson, range, take);
-                if (what == kNothing) continue;
-                scans[i].x.push_back(float(d.x() * range));
-                scans[i].y.push_back(float(d.y() * range));
-                scans[i].z.push_back(float(d.z() * range));
-                scans[i].what.push_back(what);
-            }
+        scans.push_back(rayScan(Eigen::Isometry3d::Identity(), 30.0,
+                                [&](const Eigen::Vector3d& d, double& range)
+                                {
+                                    range = 60.0;
+                                    What what = kNothing;
+                                    auto take = [&](double s, What w)
+                                    {
+                                        if (s > 1e-6 && s < range) range = s, what = w;
+                                    };
+                                    if (d.z() < 0) take(kGroundZ / d.z(), kGround);
+                                    if (d.x() > 0) take(25.5 / d.x(), kWall);
+                                    const double x = 15.2 - 0.08 * i;
+                                    hitBox(Eigen::Vector3d::Zero(), d, {x - 0.2, 0.8, kGroundZ},
+                                           {x + 0.2, 1.2, kGroundZ + 1.7}, kPerson, range, take);
+                                    return what;
+                                }));
     const Removed without = offline(scans, freeSpaceParams(), false);
     const Removed with = offline(scans, freeSpaceParams(), true);
     // Measured: the map alone removes 10 % of the person, the test 40 % before the steady drift
