@@ -337,24 +337,27 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         // surface), and at last nearer than the point by more than the margin, with no judge
         // farther out in time seeing the point occupied again. A static surface stays where it
         // is, and one that something passes in front of is cut off, not drifted from.
+        // Where judge j's beam toward the point returned (none out of view), and the judges
+        // of each side walking out from the nearest in time.
+        auto offsetFrom = [&](const Judge& j) -> std::optional<BeamOffset>
+        {
+            if (!parallax.inView(j, p_w, from_self, self_dist)) return std::nullopt;
+            return beamOffset(j, p_w, prm.free_space_margin, prm.free_space_margin_per_m);
+        };
+        auto earlier = [&](std::size_t k) -> const Judge& { return judges[self_pos - 1 - k]; };
+        auto later = [&](std::size_t k) -> const Judge& { return judges[self_pos + k]; };
         auto drifted = [&](std::size_t count, auto judgeAt, std::size_t settled)
         {
             // The judges beyond the one that settled the side gave no opinion, so the beam
             // can only have left the margin at the next one out; none settled, or the
             // farthest saw the point occupied (a static point, mostly): nothing to find.
             if (settled == 0 || settled >= count) return false;
-            auto offsetAt = [&](std::size_t k) -> std::optional<BeamOffset>
-            {
-                const Judge& j = judgeAt(k);
-                if (!parallax.inView(j, p_w, from_self, self_dist)) return std::nullopt;
-                return beamOffset(j, p_w, prm.free_space_margin, prm.free_space_margin_per_m);
-            };
-            const auto last = offsetAt(settled);
+            const auto last = offsetFrom(judgeAt(settled));
             if (!last || last->offset >= -last->margin) return false;
             double previous = 0.0;  // the point itself
             for (std::size_t k = 0; k <= settled; ++k)
             {
-                const auto o = k == settled ? last : offsetAt(k);
+                const auto o = k == settled ? last : offsetFrom(judgeAt(k));
                 if (!o || std::abs(o->offset - previous) > o->margin || o->offset > o->margin)
                     return false;
                 previous = o->offset;
@@ -362,12 +365,8 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             judged = true;
             return true;
         };
-        if (drifted(
-                self_pos, [&](std::size_t k) -> const Judge& { return judges[self_pos - 1 - k]; },
-                settled_before) ||
-            drifted(
-                judges.size() - self_pos,
-                [&](std::size_t k) -> const Judge& { return judges[self_pos + k]; }, settled_after))
+        if (drifted(self_pos, earlier, settled_before) ||
+            drifted(judges.size() - self_pos, later, settled_after))
             return Verdict::Gone;
         // A surface that moved steadily along the beams, either way, by less than the margin
         // (a person walking along the line of sight, seen occupied by every judge): walking
@@ -383,10 +382,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             int side = 0;
             for (std::size_t k = 0; k < count; ++k)
             {
-                const Judge& j = judgeAt(k);
-                if (!parallax.inView(j, p_w, from_self, self_dist)) return false;
-                const auto o =
-                    beamOffset(j, p_w, prm.free_space_margin, prm.free_space_margin_per_m);
+                const auto o = offsetFrom(judgeAt(k));
                 if (!o || std::abs(o->offset - previous) > o->margin ||
                     std::abs(o->offset) < std::abs(previous))
                     return false;
@@ -403,12 +399,8 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             }
             return false;
         };
-        if ((settled_before > 0 &&
-             steady(self_pos,
-                    [&](std::size_t k) -> const Judge& { return judges[self_pos - 1 - k]; })) ||
-            (settled_after > 0 &&
-             steady(judges.size() - self_pos,
-                    [&](std::size_t k) -> const Judge& { return judges[self_pos + k]; })))
+        if ((settled_before > 0 && steady(self_pos, earlier)) ||
+            (settled_after > 0 && steady(judges.size() - self_pos, later)))
             return Verdict::Gone;
         return judged ? Verdict::Held : Verdict::Unjudged;
     };

@@ -585,11 +585,11 @@ private:
     }
     /** For onGround(), when the beam above `p` returned nothing: whether that is what ground
      *  running on would give. `p` lies on the line of the two returns below it (within `step`),
-     *  and the next beam up would meet that line, carried
-     *  on beyond `p`, farther than the scan's farthest return (`farthest_return`; or never
-     *  meet it): a sensor's last rings on the ground, whose next beam up lands beyond its
-     *  reach. The next beam up is one gap of the sensor's beams (PillarGrid::beamGapSlope())
-     *  above `p`'s. Something standing on the ground is off that line by more than a kerb. */
+     *  and the next beam up would meet that line, carried on beyond `p`, farther than the
+     *  scan's farthest return (`farthest_return`; or never meet it): a sensor's last rings on
+     *  the ground, whose next beam up lands beyond its reach. The next beam up is one gap of
+     *  the sensor's beams (PillarGrid::beamGapSlope()) above `p`'s. Something standing on the
+     *  ground is off that line by more than a kerb. */
     [[nodiscard]] bool groundOutOfReachAbove(const Found& p, const Found& below, double step) const
     {
         if (!below.found || !grid || farthest_return <= 0.0f) return false;
