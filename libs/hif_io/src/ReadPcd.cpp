@@ -217,36 +217,28 @@ PcdCloud readPcd(const std::string& file)
 
 void toViewpointFrame(PcdCloud& pcd)
 {
-    const Eigen::Isometry3d inv = pcd.viewpoint.inverse();
-    if (!pcd.origin.isZero(0.0))
-    {
-        for (std::size_t i = 0; i < pcd.size(); ++i)
-        {
-            const Eigen::Vector3d p = inv * pcd.point(i);
-            pcd.x[i] = static_cast<float>(p.x());
-            pcd.y[i] = static_cast<float>(p.y());
-            pcd.z[i] = static_cast<float>(p.z());
-        }
-        pcd.origin.setZero();
-        return;
-    }
-    // With a zero origin, the file's float32 points as they are, moved in double: the sums in
-    // the order of Eigen's product (inv * p), over the three arrays at once (the compiler
-    // vectorizes the loop; a point at a time through Eigen it did not).
-    const Eigen::Matrix4d& m = inv.matrix();
+    // inv * point(i), in double (a wide file's origin added back first: UTM keeps its
+    // millimetres), with the sums in the order of Eigen's product, over the three arrays at
+    // once: the compiler vectorizes the loop (a point at a time through Eigen it did not).
+    const Eigen::Matrix4d m = pcd.viewpoint.inverse().matrix();
     const double r00 = m(0, 0), r01 = m(0, 1), r02 = m(0, 2), t0 = m(0, 3);
     const double r10 = m(1, 0), r11 = m(1, 1), r12 = m(1, 2), t1 = m(1, 3);
     const double r20 = m(2, 0), r21 = m(2, 1), r22 = m(2, 2), t2 = m(2, 3);
+    // Without an origin, -0.0 is added: the one addition that leaves every value as it is,
+    // the sign of a zero included (the file's float32 points as they are).
+    const Eigen::Vector3d o = pcd.origin.isZero(0.0) ? Eigen::Vector3d::Constant(-0.0) : pcd.origin;
+    const double ox = o.x(), oy = o.y(), oz = o.z();
     float* x = pcd.x.data();
     float* y = pcd.y.data();
     float* z = pcd.z.data();
     for (std::size_t i = 0, n = pcd.size(); i < n; ++i)
     {
-        const double px = x[i], py = y[i], pz = z[i];
+        const double px = double(x[i]) + ox, py = double(y[i]) + oy, pz = double(z[i]) + oz;
         x[i] = static_cast<float>(r00 * px + r01 * py + r02 * pz + t0);
         y[i] = static_cast<float>(r10 * px + r11 * py + r12 * pz + t1);
         z[i] = static_cast<float>(r20 * px + r21 * py + r22 * pz + t2);
     }
+    pcd.origin.setZero();
 }
 
 }  // namespace hif::io
