@@ -73,8 +73,9 @@ TEST(Walkers, SyntheticWalkersAreRemovedOfflineAndOnline)
 // People walking towards the sensor or away from it, within 15 degrees of its line of sight
 // (issue 23's hard case): the beams through where a person was land on the person again, a
 // little nearer or farther, so fewer are removed than of the people crossing the view. The floors
-// guard today's figures (person DA 95.5 and 73.7 offline, 68.3 and 58.3 online; 94.2 and 72.9,
-// 65.8 and 58.3 before the free-space test followed a steady drift within the margin, 80.5
+// guard today's figures (person DA 95.5 and 76.8 offline, 68.3 and 59.6 online; 95.5 and 73.7,
+// 68.3 and 58.3 before the steady drift read the beam nearest each point's elevation; 94.2 and
+// 72.9, 65.8 and 58.3 before the free-space test followed a steady drift within the margin, 80.5
 // offline on the first clip before it followed a surface drifting out of it; the paper's
 // method 30.6 and 19.0); the issue's targets are 85 offline and 75 online.
 TEST(Walkers, WalkersAlongTheLineOfSightAreRemovedInPart)
@@ -130,7 +131,7 @@ TEST(Walkers, WalkersAlongTheLineOfSightAreRemovedInPart)
             EXPECT_GE((*s)["total"]["SA"].get<double>(), 99.5);
             EXPECT_GT((*s)["per_moving_class"]["moving-person"]["dynamic_total"].get<int>(), 3000);
         }
-        EXPECT_GE(offline["per_moving_class"]["moving-person"]["DA"].get<double>(), 70.0);
+        EXPECT_GE(offline["per_moving_class"]["moving-person"]["DA"].get<double>(), 75.0);
         EXPECT_GE(online["per_moving_class"]["moving-person"]["DA"].get<double>(), 55.0);
         EXPECT_LT(paper["per_moving_class"]["moving-person"]["DA"].get<double>(), 40.0);
     }

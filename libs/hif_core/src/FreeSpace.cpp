@@ -53,6 +53,7 @@ struct ImageCell
 {
     int r, c;
     double d;
+    bool upper;  ///< in the upper half of its row
 };
 std::optional<ImageCell> cellOf(const Judge& j, const Eigen::Vector3d& p)
 {
@@ -62,23 +63,29 @@ std::optional<ImageCell> cellOf(const Judge& j, const Eigen::Vector3d& p)
     const double tan_el = q.z() / rxy;
     const RangeImageLayout& l = *j.layout;
     if (!(tan_el >= l.tan_min && tan_el < l.tan_max)) return std::nullopt;
+    const double row = (tan_el - l.tan_min) / l.tan_res;
+    const int r = std::min(l.rows - 1, static_cast<int>(row));
     return ImageCell{
-        std::min(l.rows - 1, static_cast<int>((tan_el - l.tan_min) / l.tan_res)),
-        std::min(l.cols - 1, static_cast<int>(pseudoAzimuth(q.x(), q.y()) * (l.cols / 4.0))),
-        std::sqrt(rxy * rxy + q.z() * q.z())};
+        r, std::min(l.cols - 1, static_cast<int>(pseudoAzimuth(q.x(), q.y()) * (l.cols / 4.0))),
+        std::sqrt(rxy * rxy + q.z() * q.z()), row - r >= 0.5};
 }
 
-/** What scan `j` saw at world point `p` (range margin `margin(d)`). */
-View look(const Judge& j, const Eigen::Vector3d& p, double margin0, double margin_per_m)
+/** What one scan saw at a point, and with which beam. */
+struct Look
 {
-    const auto cell = cellOf(j, p);
-    if (!cell) return View::None;
-    const auto [r, c, d] = *cell;
+    View view;
+    float range;  ///< of the beam through the point (that of its cell, else the nearest one)
+};
+/** What scan `j` saw at a world point in its `cell` (range margin `margin(d)`). */
+Look look(const Judge& j, const ImageCell& cell, double margin0, double margin_per_m)
+{
+    const int r = cell.r, c = cell.c;
+    const double d = cell.d;
     const RangeImageLayout& l = *j.layout;
     const double m = margin0 + margin_per_m * d;
     // The beam through the point: that of its own cell, else the nearest one around it.
     const float own = j.at(r, c);
-    if (own <= d + m) return own > d - m ? View::Occupied : View::None;  // or occluded
+    if (own <= d + m) return {own > d - m ? View::Occupied : View::None, own};  // or occluded
     float e = own;
     bool near = false;
     int best = std::numeric_limits<int>::max();
@@ -99,27 +106,41 @@ View look(const Judge& j, const Eigen::Vector3d& p, double margin0, double margi
             }
         }
     }
-    if (!std::isfinite(e)) return View::None;  // no beam near the point's direction
-    if (e <= d + m) return e > d - m ? View::Occupied : View::None;
-    return near ? View::Vetoed : View::Free;  // passed, unless something is near it
+    if (!std::isfinite(e)) return {View::None, e};  // no beam near the point's direction
+    if (e <= d + m) return {e > d - m ? View::Occupied : View::None, e};
+    return {near ? View::Vetoed : View::Free, e};  // passed, unless something is near it
 }
 
-/** Where scan `j`'s beam toward world point `p` (that of its own cell) returned, relative to
- *  `p`: the return's range minus the point's (negative: nearer), with the margin at that
- *  distance. None when the point is outside the image or that beam returned nothing. */
+/** Where scan `j`'s beam toward a world point in its `cell` (that cell's beam) returned,
+ *  relative to the point: the return's range minus the point's (negative: nearer), with the
+ *  margin at that distance. None when that beam returned nothing. */
 struct BeamOffset
 {
     double offset;
     double margin;
 };
-std::optional<BeamOffset> beamOffset(const Judge& j, const Eigen::Vector3d& p, double margin0,
+std::optional<BeamOffset> beamOffset(const Judge& j, const ImageCell& cell, double margin0,
                                      double margin_per_m)
 {
-    const auto cell = cellOf(j, p);
-    if (!cell) return std::nullopt;
-    const float own = j.at(cell->r, cell->c);
+    const float own = j.at(cell.r, cell.c);
     if (!std::isfinite(own)) return std::nullopt;
-    return BeamOffset{static_cast<double>(own) - cell->d, margin0 + margin_per_m * cell->d};
+    return BeamOffset{static_cast<double>(own) - cell.d, margin0 + margin_per_m * cell.d};
+}
+
+/** The same for the beam nearest the point's elevation: that of its own cell, else of the row
+ *  next to it on the point's side, else of the other (the image's rows are finer than the
+ *  sensor's beams, so a cell between two beams holds no return). */
+std::optional<BeamOffset> nearestBeamOffset(const Judge& j, const ImageCell& cell, double margin0,
+                                            double margin_per_m)
+{
+    float range = j.at(cell.r, cell.c);
+    const int rows = j.layout->rows;
+    const int first = cell.upper ? cell.r + 1 : cell.r - 1;
+    const int second = cell.upper ? cell.r - 1 : cell.r + 1;
+    if (!std::isfinite(range) && first >= 0 && first < rows) range = j.at(first, cell.c);
+    if (!std::isfinite(range) && second >= 0 && second < rows) range = j.at(second, cell.c);
+    if (!std::isfinite(range)) return std::nullopt;
+    return BeamOffset{static_cast<double>(range) - cell.d, margin0 + margin_per_m * cell.d};
 }
 
 /** What the test's scans say about one point, all opinions taken together. */
@@ -219,7 +240,8 @@ struct ObjectTest
     }
 };
 
-/** Judges in a row that must show a surface moving steadily along the beams (markSeenThrough). */
+/** Judges (whose beams returned) that must show a surface moving steadily along the beams
+ *  (markSeenThrough()). */
 constexpr std::size_t kSteadyJudges = 3;
 
 /** Gone points needed among `judged` for a share `fraction`: at least one. */
@@ -293,6 +315,17 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
                                         judges.begin())
              : judges.size();
 
+    // Where each judge sees the point being judged (within the view limit), found at most once
+    // per judge and point: the rules below ask the same judges again.
+    enum class Seen : uint8_t
+    {
+        Unknown,
+        Out,  ///< beyond the view limit or outside the judge's image
+        In
+    };
+    std::vector<Seen> seen(judges.size());
+    std::vector<ImageCell> cells(judges.size());
+
     // What the judges say about input point i: the judges that saw it occupied, with
     // this scan, span a stretch of time; only a judge outside it that saw through the point
     // shows it gone. On each side of the scan, walking in from the farthest judge, the first
@@ -303,31 +336,57 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         const Eigen::Vector3d p_w = R * Eigen::Vector3d(pts.x[i], pts.y[i], pts.z[i]) + t;
         const Eigen::Vector3d from_self = p_w - t;
         const double self_dist = from_self.norm();
-        bool judged = false;
-        // Whether judge j settles this side: gone, or occupied.
-        auto settles = [&](const Judge& j, bool& gone)
+        std::fill(seen.begin(), seen.end(), Seen::Unknown);
+        auto cellIn = [&](std::size_t j) -> const ImageCell*
         {
-            if (!parallax.inView(j, p_w, from_self, self_dist)) return false;
-            const View v = look(j, p_w, prm.free_space_margin, prm.free_space_margin_per_m);
-            judged = judged || v != View::None;
-            gone = v == View::Free;
-            return gone || v == View::Occupied;
+            if (seen[j] == Seen::Unknown)
+            {
+                std::optional<ImageCell> c;
+                if (parallax.inView(judges[j], p_w, from_self, self_dist))
+                    c = cellOf(judges[j], p_w);
+                seen[j] = c ? Seen::In : Seen::Out;
+                if (c) cells[j] = *c;
+            }
+            return seen[j] == Seen::In ? &cells[j] : nullptr;
+        };
+        bool judged = false;
+        // Whether a beam that returned `offset` from the point (within the margin `m` there)
+        // shows a steady drift's full size (see `steady` below): beyond the margin's share
+        // for range noise and pose error, half the margin at no distance.
+        auto driftSize = [&](double offset, double m)
+        { return std::abs(offset) > m - 0.5 * prm.free_space_margin; };
+        // Whether judge j settles this side: gone, or occupied (`sized`: its beam returned a
+        // drift's size from the point).
+        bool sized = false;
+        auto settles = [&](std::size_t j, bool& gone)
+        {
+            const ImageCell* c = cellIn(j);
+            if (!c) return false;
+            const Look v = look(judges[j], *c, prm.free_space_margin, prm.free_space_margin_per_m);
+            judged = judged || v.view != View::None;
+            gone = v.view == View::Free;
+            sized = driftSize(static_cast<double>(v.range) - c->d,
+                              prm.free_space_margin + prm.free_space_margin_per_m * c->d);
+            return gone || v.view == View::Occupied;
         };
         // Each side, walking in from the farthest judge: how far in time (in judges) the one
         // that settled it was (0: none did).
         bool gone = false;
         std::size_t settled_before = 0, settled_after = 0;
+        bool sized_before = false, sized_after = false;
         for (std::size_t j = 0; j < self_pos; ++j)  // the earlier judges, oldest first
-            if (settles(judges[j], gone))
+            if (settles(j, gone))
             {
                 settled_before = self_pos - j;
+                sized_before = sized;
                 break;
             }
         if (gone) return Verdict::Gone;
         for (std::size_t j = judges.size(); j-- > self_pos;)  // the later ones, newest first
-            if (settles(judges[j], gone))
+            if (settles(j, gone))
             {
                 settled_after = j - self_pos + 1;
+                sized_after = sized;
                 break;
             }
         if (gone) return Verdict::Gone;
@@ -339,13 +398,14 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         // is, and one that something passes in front of is cut off, not drifted from.
         // Where judge j's beam toward the point returned (none out of view), and the judges
         // of each side walking out from the nearest in time.
-        auto offsetFrom = [&](const Judge& j) -> std::optional<BeamOffset>
+        auto offsetFrom = [&](std::size_t j) -> std::optional<BeamOffset>
         {
-            if (!parallax.inView(j, p_w, from_self, self_dist)) return std::nullopt;
-            return beamOffset(j, p_w, prm.free_space_margin, prm.free_space_margin_per_m);
+            const ImageCell* c = cellIn(j);
+            if (!c) return std::nullopt;
+            return beamOffset(judges[j], *c, prm.free_space_margin, prm.free_space_margin_per_m);
         };
-        auto earlier = [&](std::size_t k) -> const Judge& { return judges[self_pos - 1 - k]; };
-        auto later = [&](std::size_t k) -> const Judge& { return judges[self_pos + k]; };
+        auto earlier = [&](std::size_t k) { return self_pos - 1 - k; };
+        auto later = [&](std::size_t k) { return self_pos + k; };
         auto drifted = [&](std::size_t count, auto judgeAt, std::size_t settled)
         {
             // The judges beyond the one that settled the side gave no opinion, so the beam
@@ -370,28 +430,35 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             return Verdict::Gone;
         // A surface that moved steadily along the beams, either way, by less than the margin
         // (a person walking along the line of sight, seen occupied by every judge): walking
-        // out from the nearest judge in time, each one's beam toward the point returned on the
-        // same side of it as the others and no nearer to it than the previous one, within the
-        // margin of the previous one (the same surface), kSteadyJudges of them at least, the
-        // last beyond half the margin (its share for range noise and pose error; what a beam
-        // on a slanted surface adds does not grow judge after judge). A static surface's
-        // offsets scatter around the point; foliage's jitter in and out.
+        // out from the nearest judge in time, each beam toward the point that returned did so
+        // on the same side of it as the others and no nearer to it than the previous one,
+        // within the margin of the previous one (the same surface), kSteadyJudges of them at
+        // least, the last a drift's size from the point (a static surface's offsets scatter
+        // around the point, and foliage's jitter in and out; what a beam on a slanted surface
+        // and the pose add does not grow judge after judge). The beam toward the point is the
+        // one nearest its elevation; a judge whose beams there returned nothing says nothing
+        // either way; one that cannot see the point ends the walk.
         auto steady = [&](std::size_t count, auto judgeAt)
         {
             double previous = 0.0;
             int side = 0;
+            std::size_t returned = 0;  // judges whose beam toward the point returned
             for (std::size_t k = 0; k < count; ++k)
             {
-                const auto o = offsetFrom(judgeAt(k));
-                if (!o || std::abs(o->offset - previous) > o->margin ||
+                const std::size_t j = judgeAt(k);
+                const ImageCell* c = cellIn(j);
+                if (!c) return false;
+                const auto o = nearestBeamOffset(judges[j], *c, prm.free_space_margin,
+                                                 prm.free_space_margin_per_m);
+                if (!o) continue;
+                if (std::abs(o->offset - previous) > o->margin ||
                     std::abs(o->offset) < std::abs(previous))
                     return false;
                 const int s = (o->offset > 0.0) - (o->offset < 0.0);
                 if (s != 0 && side != 0 && s != side) return false;
                 if (s != 0) side = s;
                 previous = o->offset;
-                if (k + 1 >= kSteadyJudges &&
-                    std::abs(previous) > o->margin - 0.5 * prm.free_space_margin)
+                if (++returned >= kSteadyJudges && driftSize(previous, o->margin))
                 {
                     judged = true;
                     return true;
@@ -399,8 +466,13 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             }
             return false;
         };
-        if ((settled_before > 0 && steady(self_pos, earlier)) ||
-            (settled_after > 0 && steady(judges.size() - self_pos, later)))
+        // Only where it can be found: the judge that settled the side is the farthest out
+        // that saw the point within the margin, so a steady drift reaches its size there
+        // (what it saw, taken with the beam that look() took), kSteadyJudges or more out.
+        auto mayDrift = [](std::size_t settled, bool settled_sized)
+        { return settled >= kSteadyJudges && settled_sized; };
+        if ((mayDrift(settled_before, sized_before) && steady(self_pos, earlier)) ||
+            (mayDrift(settled_after, sized_after) && steady(judges.size() - self_pos, later)))
             return Verdict::Gone;
         return judged ? Verdict::Held : Verdict::Unjudged;
     };
