@@ -142,6 +142,14 @@ TEST(Sensors, EachSensorsClipIsCleanedWithTheDefaults)
             }
         }
 
+    // A sensor without rings: the log says how far to trust the result.
+    const std::string rosette = work.path() + "/mid-70_street";
+    auto n = clean(rosette, rosette + "/again", [](Options& o) { o.picture = false; });
+    ASSERT_EQ(n.code, 0) << n.output;
+    EXPECT_NE(n.output.find("note   : with a sensor without rings, hif removes far more static"),
+              std::string::npos)
+        << n.output;
+
     // The VLP-16's beams given in the config: the map's model from the start (in summary.json,
     // "given"); an HDL-64E's given instead, the scans contradict it, and hif-clean says so.
     const std::string seq = work.path() + "/vlp-16_street";
@@ -165,6 +173,7 @@ TEST(Sensors, EachSensorsClipIsCleanedWithTheDefaults)
         << r.output;
     EXPECT_NE(r.output.find("(given in the config)"), std::string::npos);
     EXPECT_EQ(r.output.find("does not look like"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("sensor without rings"), std::string::npos) << r.output;
     const json g = readJson(seq + "/given/summary.json")["sensor"];
     EXPECT_TRUE(g["given"].get<bool>());
     EXPECT_EQ(g["beams"].get<int>(), 16);

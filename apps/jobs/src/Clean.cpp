@@ -66,6 +66,18 @@ const std::vector<std::string> kOutputNames{
     "summary.json", "map.hifmap",  "static_map.ply", "static_map.pcd", "removed.ply",
     "removed.pcd",  "predictions", "map.png",        "map.3Dscene",    "classes.ply"};
 
+/** The sensor model's line of the log; for a sensor without rings, also how far to trust the
+ *  result (it keeps far fewer static points than with a spinning LiDAR). */
+void describeSensor(const hif::SensorModel& m, const std::string& source, std::ostream& log)
+{
+    log << Clean::kTag << " sensor : " << m.describe() << " (" << source << ")\n";
+    if (!m.hasRings())
+        log << Clean::kTag
+            << " note   : with a sensor without rings, hif removes far more static points than "
+               "with a spinning LiDAR (doc/sensors.md, \"What does not work well yet\"): check "
+               "removed.* before using the static map\n";
+}
+
 /** Checks the command line, opens the input, creates the maps; refuses to replace earlier
  *  results unless asked, and any output that is an input or another output of the run. */
 void setUp(const CleanOptions& o, Run& run)
@@ -148,7 +160,7 @@ void printHeader(const Run& run, std::ostream& log)
         << "\n"
         << Clean::kTag << " output : " << run.out_dir << "\n";
     if (const auto& m = run.hif_map->grid().sensorModel())
-        log << Clean::kTag << " sensor : " << m->describe() << " (given in the config)\n";
+        describeSensor(*m, "given in the config", log);
     for (const std::string& w : run.source->warnings())
         log << Clean::kTag << " warning: " << w << "\n";
 }
@@ -193,8 +205,8 @@ void reportSensor(Run& run, std::size_t k, std::ostream& log)
     if (st.sensor_estimated)
     {
         r.estimated_from_scan = k;
-        log << Clean::kTag << " sensor : " << run.hif_map->grid().sensorModel()->describe()
-            << " (estimated from scan " << k << ")\n";
+        describeSensor(*run.hif_map->grid().sensorModel(),
+                       "estimated from scan " + std::to_string(k), log);
     }
     if (st.sensor_checked) ++r.checks;
     if (st.sensor_contradiction.empty()) return;
