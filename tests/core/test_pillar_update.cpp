@@ -380,6 +380,17 @@ TEST(PillarGrid, SetParamsKeepsThePillarsAndRejectsBadValues)
     EXPECT_EQ(grid.geometry(), geo);
     geo.pillar_size = 0;
     EXPECT_THROW(PillarGrid{geo}, std::invalid_argument);
+    // Cells finer than a micrometre: a subnormal height cell (a map file fuzz_map made) would
+    // make every height NaN.
+    geo.pillar_size = 2.0;
+    geo.height_resolution = 6.5e-316;
+    EXPECT_THROW(PillarGrid{geo}, std::invalid_argument);
+    geo.height_resolution = 0.5 * GridGeometry::kMinCell;
+    EXPECT_THROW(PillarGrid{geo}, std::invalid_argument);
+    geo.height_resolution = GridGeometry::kMinCell;
+    EXPECT_NO_THROW(PillarGrid{geo});
+    geo.pillar_size = 1e-300;
+    EXPECT_THROW(PillarGrid{geo}, std::invalid_argument);
 }
 
 // ---- Beyond the paper (Params::high_height_preservation, unseen_height_prior) ----

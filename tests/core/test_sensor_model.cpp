@@ -104,6 +104,22 @@ TEST(SensorModel, AFewPointsGiveNoModelAndTheGridEstimatesFromItsFirstScan)
     EXPECT_FALSE(p.sensorModel());
 }
 
+// The range images' rows and columns follow the sensor's spacing, but no finer than 0.05
+// degrees: a spacing of a millionth of a degree (valid for validate()) asks for a few thousand
+// rows, not billions.
+TEST(SensorModel, RangeImagesAreNoFinerThanFiveHundredthsOfADegree)
+{
+    const RangeImageLayout fine =
+        RangeImageLayout::forSensor(SensorModel::fromPattern(-35.0, 35.0, 1e-6, 70.0));
+    EXPECT_EQ(fine.cols, 7200);  // 360 / 0.05
+    // (tan 35 deg - tan -35 deg) / (0.05 deg in radians) + 1 = 1605 rows.
+    EXPECT_EQ(fine.rows, 1605);
+    // A real sensor's spacing is coarser: its rows are half of it.
+    const RangeImageLayout vlp16 =
+        RangeImageLayout::forSensor(SensorModel::fromPattern(-15.0, 15.0, 2.0, 360.0));
+    EXPECT_NEAR(vlp16.tan_res, 1.0 * M_PI / 180.0, 1e-12);
+}
+
 TEST(SensorModel, RecoversKittisHdl64eAndItsSparserCopies)
 {
     for (const char* seq : {"01", "03", "04", "08"})

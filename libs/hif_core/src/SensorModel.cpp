@@ -342,9 +342,10 @@ RangeImageLayout RangeImageLayout::forSensor(const std::optional<SensorModel>& m
         const double s = model->vertical_spacing_deg;
         lo_deg = std::max(-80.0, model->elevation_min_deg - 2.0 * s);
         hi_deg = std::min(80.0, model->elevation_max_deg + 2.0 * s);
-        row_deg = 0.5 * s;
-        // Half a horizontal step too (0.05 degrees at least: finer helps no LiDAR of interest
-        // and costs memory).
+        // Rows half a vertical spacing, columns half a horizontal step; each 0.05 degrees at
+        // least: finer helps no LiDAR of interest and costs memory (and a spacing of a
+        // millionth of a degree, which validate() lets through, would ask for billions).
+        row_deg = std::max(0.05, 0.5 * s);
         const double step = std::max(0.05, 0.5 * model->horizontal_resolution_deg);
         l.cols = static_cast<int>(std::ceil(360.0 / step));
     }

@@ -21,6 +21,11 @@ namespace hif
  *  (k+1) height_resolution). */
 struct GridGeometry
 {
+    /** The finest pillar edge and height cell, metres: a micrometre. Finer has no meaning for a
+     *  LiDAR (its range noise is centimetres), and the inverse of a cell must stay finite (a
+     *  subnormal height_resolution made it infinite, and heights NaN). */
+    static constexpr double kMinCell = 1e-6;
+
     /** Pillar edge length in x and y, metres (Eq. 1-2; paper: 1 m). */
     double pillar_size = 1.0;
     /** Global grid origin O = (x_o, y_o) on the XY plane, metres (Eq. 1). */
@@ -84,10 +89,10 @@ inline const std::array<Field<GridGeometry>, 4>& GridGeometry::fields()
 {
     using G = GridGeometry;
     static const std::array<Field<G>, 4> table{{
-        {"pillar_size", &G::pillar_size, Bounds::above(0), 0, "Pillar edge [m] (Eq. 1-2)"},
+        {"pillar_size", &G::pillar_size, Bounds::atLeast(kMinCell), 0, "Pillar edge [m] (Eq. 1-2)"},
         {"origin_x", &G::origin_x, Bounds::any(), 0, "Grid origin x [m] (Eq. 1)"},
         {"origin_y", &G::origin_y, Bounds::any(), 0, "Grid origin y [m] (Eq. 1)"},
-        {"height_resolution", &G::height_resolution, Bounds::above(0), 0,
+        {"height_resolution", &G::height_resolution, Bounds::atLeast(kMinCell), 0,
          "Interval endpoints are multiples of this [m]"},
     }};
     return table;
