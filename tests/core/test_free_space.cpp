@@ -210,6 +210,17 @@ Removed offline(const std::vector<Scan>& scans, const Params& prm, bool with_tes
     }
     return r;
 }
+
+/** The scans cleaned offline with freeSpaceParams(), without the free-space test and with it. */
+struct WithAndWithout
+{
+    Removed without, with;
+};
+WithAndWithout withAndWithoutTheTest(const std::vector<Scan>& scans)
+{
+    return {offline(scans, freeSpaceParams(), false), offline(scans, freeSpaceParams(), true)};
+}
+
 }  // namespace
 
 TEST(FreeSpaceTest, AWalkerIsRemovedGroundWallAndPoleStay)
@@ -218,8 +229,7 @@ TEST(FreeSpaceTest, AWalkerIsRemovedGroundWallAndPoleStay)
     {
         SCOPED_TRACE("sensor moving " + std::to_string(ego) + " m per scan");
         const std::vector<Scan> scans = makeScans(ego);
-        const Removed without = offline(scans, freeSpaceParams(), false);
-        const Removed with = offline(scans, freeSpaceParams(), true);
+        const auto [without, with] = withAndWithoutTheTest(scans);
         // Measured: the map alone removes 34 % (standing) and 38 % (moving) of the walker, with
         // the test 98 %; it adds no removal of the ground, the wall or the pole.
         EXPECT_LT(without.pct(kPerson), 50.0) << "the map alone should keep the walker";
@@ -249,8 +259,7 @@ TEST(FreeSpaceTest, TheLowPartsOfAMoverGoWithItIntoTheNextPillars)
     {
         SCOPED_TRACE("sensor moving " + std::to_string(ego) + " m per scan");
         const std::vector<Scan> scans = makeScans(ego);
-        const Removed without = offline(scans, freeSpaceParams(), false);
-        const Removed with = offline(scans, freeSpaceParams(), true);
+        const auto [without, with] = withAndWithoutTheTest(scans);
         // Measured: the map alone removes 16 % (standing) and 36 % (moving) of the wheels, with
         // the test 87 % either way (56 % and 79 % with the neighbours only, the map alone's
         // when only the pillars the test itself shows gone count as a mover's); the rider
@@ -421,10 +430,9 @@ TEST(FreeSpaceTest, APersonWalkingAlongTheLineOfSightIsShownByASteadyDrift)
     // elevations, often between two rows of beams).
     for (const double ego : {0.0, 0.3})
     {
-        SCOPED_TRACE(ego);
+        SCOPED_TRACE("sensor moving " + std::to_string(ego) + " m per scan");
         const std::vector<Scan> scans = radialWalkerScans(ego);
-        const Removed without = offline(scans, freeSpaceParams(), false);
-        const Removed with = offline(scans, freeSpaceParams(), true);
+        const auto [without, with] = withAndWithoutTheTest(scans);
         // Measured, standing (moving): the map alone removes 10 % of the person (7 %); the test
         // 40 % before the steady drift was followed, 80 % (54 %) with the drift read from each
         // judge's own cell only, 80 % (99.8 %) with the beam nearest the point's elevation.

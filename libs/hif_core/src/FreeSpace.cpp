@@ -70,19 +70,29 @@ std::optional<ImageCell> cellOf(const Judge& j, const Eigen::Vector3d& p)
         std::sqrt(rxy * rxy + q.z() * q.z()), row - r >= 0.5};
 }
 
+/** The range margin of the test at distance d from a judge: base + per_m * d, metres
+ *  (Params::free_space_margin, free_space_margin_per_m). */
+struct RangeMargin
+{
+    double base;
+    double per_m;
+
+    [[nodiscard]] double at(double d) const { return base + per_m * d; }
+};
+
 /** What one scan saw at a point, and with which beam. */
 struct Look
 {
     View view;
     float range;  ///< of the beam through the point (that of its cell, else the nearest one)
 };
-/** What scan `j` saw at a world point in its `cell` (range margin `margin(d)`). */
-Look look(const Judge& j, const ImageCell& cell, double margin0, double margin_per_m)
+/** What scan `j` saw at a world point in its `cell`. */
+Look look(const Judge& j, const ImageCell& cell, const RangeMargin& margin)
 {
     const int r = cell.r, c = cell.c;
     const double d = cell.d;
     const RangeImageLayout& l = *j.layout;
-    const double m = margin0 + margin_per_m * d;
+    const double m = margin.at(d);
     // The beam through the point: that of its own cell, else the nearest one around it.
     const float own = j.at(r, c);
     if (own <= d + m) return {own > d - m ? View::Occupied : View::None, own};  // or occluded
@@ -111,27 +121,32 @@ Look look(const Judge& j, const ImageCell& cell, double margin0, double margin_p
     return {near ? View::Vetoed : View::Free, e};  // passed, unless something is near it
 }
 
-/** Where scan `j`'s beam toward a world point in its `cell` (that cell's beam) returned,
- *  relative to the point: the return's range minus the point's (negative: nearer), with the
- *  margin at that distance. None when that beam returned nothing. */
+/** Where a beam toward a world point in `cell` returned (`range`, +inf: nothing), relative
+ *  to the point: the return's range minus the point's (negative: nearer), with the margin at
+ *  that distance. None when the beam returned nothing. */
 struct BeamOffset
 {
     double offset;
     double margin;
 };
-std::optional<BeamOffset> beamOffset(const Judge& j, const ImageCell& cell, double margin0,
-                                     double margin_per_m)
+std::optional<BeamOffset> offsetOf(float range, const ImageCell& cell, const RangeMargin& margin)
 {
-    const float own = j.at(cell.r, cell.c);
-    if (!std::isfinite(own)) return std::nullopt;
-    return BeamOffset{static_cast<double>(own) - cell.d, margin0 + margin_per_m * cell.d};
+    if (!std::isfinite(range)) return std::nullopt;
+    return BeamOffset{static_cast<double>(range) - cell.d, margin.at(cell.d)};
 }
 
-/** The same for the beam nearest the point's elevation: that of its own cell, else of the row
- *  next to it on the point's side, else of the other (the image's rows are finer than the
- *  sensor's beams, so a cell between two beams holds no return). */
-std::optional<BeamOffset> nearestBeamOffset(const Judge& j, const ImageCell& cell, double margin0,
-                                            double margin_per_m)
+/** offsetOf() for scan `j`'s beam of the point's own cell. */
+std::optional<BeamOffset> beamOffset(const Judge& j, const ImageCell& cell,
+                                     const RangeMargin& margin)
+{
+    return offsetOf(j.at(cell.r, cell.c), cell, margin);
+}
+
+/** offsetOf() for scan `j`'s beam nearest the point's elevation: that of its own cell, else of
+ *  the row next to it on the point's side, else of the other (the image's rows are finer than
+ *  the sensor's beams, so a cell between two beams holds no return). */
+std::optional<BeamOffset> nearestBeamOffset(const Judge& j, const ImageCell& cell,
+                                            const RangeMargin& margin)
 {
     float range = j.at(cell.r, cell.c);
     const int rows = j.layout->rows;
@@ -139,8 +154,7 @@ std::optional<BeamOffset> nearestBeamOffset(const Judge& j, const ImageCell& cel
     const int second = cell.upper ? cell.r - 1 : cell.r + 1;
     if (!std::isfinite(range) && first >= 0 && first < rows) range = j.at(first, cell.c);
     if (!std::isfinite(range) && second >= 0 && second < rows) range = j.at(second, cell.c);
-    if (!std::isfinite(range)) return std::nullopt;
-    return BeamOffset{static_cast<double>(range) - cell.d, margin0 + margin_per_m * cell.d};
+    return offsetOf(range, cell, margin);
 }
 
 /** What the test's scans say about one point, all opinions taken together. */
@@ -302,6 +316,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
                             prm.free_space_range * prm.free_space_range, prm.free_space_min_extent,
                             res};
     const int32_t below = object.clearance / 2;  // marked from half the clearance up
+    const RangeMargin margin{prm.free_space_margin, prm.free_space_margin_per_m};
     const Parallax parallax{prm.free_space_max_parallax_deg >= 90.0
                                 ? 1.0
                                 : std::sin(prm.free_space_max_parallax_deg * M_PI / 180.0),
@@ -354,7 +369,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         // shows a steady drift's full size (see `steady` below): beyond the margin's share
         // for range noise and pose error, half the margin at no distance.
         auto driftSize = [&](double offset, double m)
-        { return std::abs(offset) > m - 0.5 * prm.free_space_margin; };
+        { return std::abs(offset) > m - 0.5 * margin.base; };
         // Whether judge j settles this side: gone, or occupied (`sized`: its beam returned a
         // drift's size from the point).
         bool sized = false;
@@ -362,11 +377,10 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         {
             const ImageCell* c = cellIn(j);
             if (!c) return false;
-            const Look v = look(judges[j], *c, prm.free_space_margin, prm.free_space_margin_per_m);
+            const Look v = look(judges[j], *c, margin);
             judged = judged || v.view != View::None;
             gone = v.view == View::Free;
-            sized = driftSize(static_cast<double>(v.range) - c->d,
-                              prm.free_space_margin + prm.free_space_margin_per_m * c->d);
+            sized = driftSize(static_cast<double>(v.range) - c->d, margin.at(c->d));
             return gone || v.view == View::Occupied;
         };
         // Each side, walking in from the farthest judge: how far in time (in judges) the one
@@ -402,7 +416,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         {
             const ImageCell* c = cellIn(j);
             if (!c) return std::nullopt;
-            return beamOffset(judges[j], *c, prm.free_space_margin, prm.free_space_margin_per_m);
+            return beamOffset(judges[j], *c, margin);
         };
         auto earlier = [&](std::size_t k) { return self_pos - 1 - k; };
         auto later = [&](std::size_t k) { return self_pos + k; };
@@ -448,8 +462,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
                 const std::size_t j = judgeAt(k);
                 const ImageCell* c = cellIn(j);
                 if (!c) return false;
-                const auto o = nearestBeamOffset(judges[j], *c, prm.free_space_margin,
-                                                 prm.free_space_margin_per_m);
+                const auto o = nearestBeamOffset(judges[j], *c, margin);
                 if (!o) continue;
                 if (std::abs(o->offset - previous) > o->margin ||
                     std::abs(o->offset) < std::abs(previous))
