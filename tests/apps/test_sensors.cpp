@@ -114,7 +114,7 @@ TEST(Sensors, EachSensorsClipIsCleanedWithTheDefaults)
     };
     for (const Floors& f : std::vector<Floors>{{"hdl-64e", 99.0, 99.3, 99.6, 86.0},
                                                {"hdl-32e", 98.4, 98.3, 99.5, 75.0},
-                                               {"vlp-16", 97.0, 95.0, 99.2, 61.0},
+                                               {"vlp-16", 97.0, 95.0, 99.2, 68.0},
                                                {"os1-128", 98.8, 99.3, 99.5, 87.0},
                                                {"mid-70", 73.5, 65.0, 82.0, 80.0}})
         for (const std::string scene : {"street", "walkers"})

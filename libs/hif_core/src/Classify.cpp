@@ -23,6 +23,9 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
     is_dynamic.assign(pts.size, kUnset);
 
     const bool prior_static = isStaticLogOdds(logit(params_.p_empty_init));
+    const bool free_space_test =
+        free_space && !free_space->empty() && params_.free_space_window > 0;
+    if (free_space_test) scan.floors.resize(scan.pillarCount());
     std::atomic<std::size_t> n_static{0};
     detail::forRanges(detail::GridAccess::arena(*this), scan.pillarCount(), 256,
                       [&](std::size_t p0, std::size_t p1)
@@ -32,6 +35,18 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
                           {
                               const uint32_t b = scan.offsets[p], e = scan.offsets[p + 1];
                               const Pillar* pil = findPillar(unpackKey(scan.keys[p]));
+                              if (free_space_test)
+                              {
+                                  int32_t floor = detail::ScanBuckets::kNoFloor;
+                                  if (pil)
+                                      for (const Interval& iv : pil->intervals)
+                                          if (isStaticLogOdds(iv.logodds))
+                                          {
+                                              floor = iv.hi - 1;
+                                              break;
+                                          }
+                                  scan.floors[p] = floor;
+                              }
                               for (uint32_t k = b; k < e; ++k)
                               {
                                   bool stat = prior_static;
@@ -48,7 +63,7 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
                       });
     ClassifyStats st;
     st.static_points = n_static;
-    if (free_space && !free_space->empty() && params_.free_space_window > 0)
+    if (free_space_test)
     {
         st.seen_through_points = detail::markSeenThrough(*this, scan, pts, T, *free_space,
                                                          is_dynamic, st.free_space_scans);

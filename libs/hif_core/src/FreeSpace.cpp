@@ -192,10 +192,25 @@ struct ObjectTest
      *  person from about 15 m (2 degrees apart), a 32-beam one from about 35 m. */
     static constexpr std::size_t kMinEntries = 2;
 
-    int32_t clearance;  ///< cells above the pillar's lowest return
+    int32_t clearance;  ///< cells above the pillar's ground (ground())
     double range2;      ///< squared range from the sensor
     double min_extent;  ///< metres spanned
     double res;         ///< metres per cell
+
+    /** The height cell of pillar `p`'s ground for the test: its lowest return in the scan,
+     *  unless the map holds a static floor (its lowest static interval, ScanBuckets::floors)
+     *  at least min_extent below that return, whose top cell it is then. With sparse rings a
+     *  pillar's ground is often not sampled under what stands on it, so its lowest return is
+     *  a mover's own lowest ring (a walker's knees, a car's sill), which the clearance would
+     *  keep out of the test; the floor the map saw there before shows where the ground is. A
+     *  return less than an object's height above the floor is taken for the ground itself
+     *  (terrain, kerbs, a floor seen at another place in the pillar). */
+    [[nodiscard]] int32_t ground(const ScanBuckets& scan, std::size_t p, int32_t lowest) const
+    {
+        const int32_t top = scan.floors[p];
+        if (top == ScanBuckets::kNoFloor) return lowest;
+        return (static_cast<double>(lowest) - top) * res >= min_extent ? top : lowest;
+    }
 
     /** Entries clear of the ground, counted with the height they span. */
     struct Extent
@@ -214,7 +229,7 @@ struct ObjectTest
 
     struct Found
     {
-        int32_t low;  ///< the pillar's lowest cell
+        int32_t low;  ///< the pillar's ground (ground())
         bool object;  ///< the entries to test make an object
         bool moving;  ///< those already dynamic (the map's verdict) make one
     };
@@ -225,15 +240,16 @@ struct ObjectTest
     }
 
     /** The entries of pillar `p` of `scan` to test (into `tested`): clear of the pillar's
-     *  lowest return, within range, not dynamic already; and whether they, or those clear of
+     *  ground (ground()), within range, not dynamic already; and whether they, or those clear of
      *  the ground and dynamic already, make an object: at least kMinEntries spanning
      *  min_extent. */
     Found entries(const ScanBuckets& scan, std::size_t p, const PointsView& pts,
                   const std::vector<uint8_t>& is_dynamic, std::vector<uint32_t>& tested) const
     {
         const uint32_t b = scan.offsets[p], e = scan.offsets[p + 1];
-        int32_t low = std::numeric_limits<int32_t>::max();
-        for (uint32_t k = b; k < e; ++k) low = std::min(low, scan.cells[k]);
+        int32_t lowest = std::numeric_limits<int32_t>::max();
+        for (uint32_t k = b; k < e; ++k) lowest = std::min(lowest, scan.cells[k]);
+        const int32_t low = ground(scan, p, lowest);
         tested.clear();
         Extent open, dynamic;
         for (uint32_t k = b; k < e; ++k)

@@ -120,7 +120,7 @@ struct Params
      *  direction (free_space_max_parallax_deg), returned clearly beyond it and no beam around
      *  it returned near it; what counts is only a scan outside the span of scans that saw the
      *  point occupied. A pillar's points of one scan are removed when, above the pillar's
-     *  lowest return (free_space_clearance) and spanning free_space_min_extent in height, at
+     *  ground (free_space_clearance) and spanning free_space_min_extent in height, at
      *  least free_space_fraction of them were not there at other times: something that
      *  walked through. Needs the scans' range images (FreeSpaceTest); see doc/algorithm.md. */
     std::size_t free_space_window = 0;
@@ -140,8 +140,11 @@ struct Params
      *  behind it. */
     double free_space_margin = 0.3;
     double free_space_margin_per_m = 0.02;
-    /** Points of a scan less than this above the lowest return of their pillar are ground
-     *  (not tested; removed with the rest of the pillar only from half of it up), metres. */
+    /** Points of a scan less than this above their pillar's ground are ground (not tested;
+     *  removed with the rest of the pillar only from half of it up), metres. The ground is
+     *  the pillar's lowest return in the scan, or the top of the map's floor there (its
+     *  lowest static interval) where that lies free_space_min_extent or more below it: with
+     *  sparse rings the lowest return is often a mover's own lowest ring. */
     double free_space_clearance = 0.1;
     /** A pillar's tested points must span at least this in height: an object, not ground
      *  texture, metres. */
@@ -226,7 +229,7 @@ inline const std::array<Field<Params>, 29>& Params::fields()
         {"free_space_margin_per_m", &P::free_space_margin_per_m, Bounds::closedOpen(0, 1), 2,
          "Free-space test: margin added per metre of range"},
         {"free_space_clearance", &P::free_space_clearance, Bounds::atLeast(0), 2,
-         "Free-space test: points this far above their pillar's lowest return are tested [m]"},
+         "Free-space test: points this far above their pillar's ground are tested [m]"},
         {"free_space_min_extent", &P::free_space_min_extent, Bounds::atLeast(0), 2,
          "Free-space test: a pillar's tested points span at least this height [m]"},
         {"free_space_fraction", &P::free_space_fraction, Bounds::open(0, 1), 2,

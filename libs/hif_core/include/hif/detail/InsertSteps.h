@@ -46,6 +46,11 @@ struct ScanBuckets
      *  input point before it, so it takes that point's class. */
     std::vector<uint8_t> repeats;
 
+    /** Per pillar (filled by classification for the free-space test): the top cell of the
+     *  map's lowest static interval there, kNoFloor where it holds none. */
+    std::vector<int32_t> floors;
+    static constexpr int32_t kNoFloor = std::numeric_limits<int32_t>::min();
+
     Eigen::Vector3d sensor = Eigen::Vector3d::Zero();  ///< sensor position, world frame
     Eigen::Matrix3d world_to_sensor = Eigen::Matrix3d::Identity();  ///< rotation
     /** Top beam's elevation as the largest z * |z| / (x^2 + y^2) of the points farther than
