@@ -70,6 +70,24 @@ void hitBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vec
     if (s0 <= s1) take(s0, w);
 }
 
+/** First hit along the ray o + s d of the ground, a wall across the view at x = `wall_x` and,
+ *  if given, a person's box `person` (lo, hi corners), or kNothing; its range in `range`. */
+What groundWallAndPerson(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double wall_x,
+                         const std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>>& person,
+                         double& range)
+{
+    range = 80.0;
+    What what = kNothing;
+    auto take = [&](double s, What w)
+    {
+        if (s > 1e-6 && s < range) range = s, what = w;
+    };
+    if (d.z() < 0) take((kGroundZ - o.z()) / d.z(), kGround);
+    if (d.x() > 0) take((wall_x - o.x()) / d.x(), kWall);
+    if (person) hitBox(o, d, person->first, person->second, kPerson, range, take);
+    return what;
+}
+
 /** First hit along the ray o + s d, at scan `i`, of the ground, a wall at x = 25.5, a pole of
  *  radius 0.1 at (12, -3), a person (a 0.4 m square box, 1.7 m tall) crossing at x = 15, a
  *  hedge at (18, 6) missing from scan 5 only, a mover 0.3 m tall crossing at x = 10, and a
@@ -266,23 +284,14 @@ TEST(FreeSpaceTest, AWalkersLowestRingIsTestedWhereTheMapHoldsTheFloorBelowIt)
         pose.translation().x() = walker ? -10.0 : -9.0;
         const Eigen::Vector3d o = pose.translation();
         const double y = -1.0 + 0.05 * i;
+        std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>> person;
+        if (walker)
+            person.emplace(Eigen::Vector3d(15.05, y - 0.2, kGroundZ),
+                           Eigen::Vector3d(15.45, y + 0.2, kGroundZ + 1.7));
         scans.push_back(rayScan(
             pose, 20.0,
             [&](const Eigen::Vector3d& d, double& range)
-            {
-                range = 80.0;
-                What what = kNothing;
-                auto take = [&](double s, What w)
-                {
-                    if (s > 1e-6 && s < range) range = s, what = w;
-                };
-                if (d.z() < 0) take(kGroundZ / d.z(), kGround);
-                if (d.x() > 0) take((30.0 - o.x()) / d.x(), kWall);
-                if (walker)
-                    hitBox(o, d, {15.05, y - 0.2, kGroundZ}, {15.45, y + 0.2, kGroundZ + 1.7},
-                           kPerson, range, take);
-                return what;
-            },
+            { return groundWallAndPerson(o, d, 30.0, person, range); },
             2.0));
     }
     const Params prm = freeSpaceParams();
@@ -462,22 +471,12 @@ std::vector<Scan> radialWalkerScans(double ego)
         Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
         pose.translation().x() = ego * i;
         const Eigen::Vector3d o = pose.translation();
+        const double x = 15.2 - 0.08 * i;
+        const std::pair<Eigen::Vector3d, Eigen::Vector3d> person{
+            Eigen::Vector3d(x - 0.2, 0.8, kGroundZ), Eigen::Vector3d(x + 0.2, 1.2, kGroundZ + 1.7)};
         scans.push_back(rayScan(pose, 30.0,
                                 [&](const Eigen::Vector3d& d, double& range)
-                                {
-                                    range = 60.0;
-                                    What what = kNothing;
-                                    auto take = [&](double s, What w)
-                                    {
-                                        if (s > 1e-6 && s < range) range = s, what = w;
-                                    };
-                                    if (d.z() < 0) take(kGroundZ / d.z(), kGround);
-                                    if (d.x() > 0) take((25.5 - o.x()) / d.x(), kWall);
-                                    const double x = 15.2 - 0.08 * i;
-                                    hitBox(o, d, {x - 0.2, 0.8, kGroundZ},
-                                           {x + 0.2, 1.2, kGroundZ + 1.7}, kPerson, range, take);
-                                    return what;
-                                }));
+                                { return groundWallAndPerson(o, d, 25.5, person, range); }));
     }
     return scans;
 }
