@@ -233,16 +233,17 @@ TEST(RealKittiOnline, OnlineCleaningMeetsTheFloors)
 // KITTI 04 with every 2nd and every 4th ring (about an HDL-32E's and a VLP-16's spacing): the
 // copies hold their rings and labels, and are cleaned. The floors are a little under today's
 // figures (misses where beams passed, ground seen once kept, the free-space test measuring from
-// the map's floor under a mover; 32 rings: SA 98.41, AA 95.44; 16 rings: SA 97.30, AA 92.16,
-// the walking person 20.0 %, 2.5 % when its lowest ring was taken for the ground), as a guard
-// against regressions on the way to issue 20's SA >= 98.
+// the map's floor under a mover and testing a lone low ring next to a mover; 32 rings: SA
+// 98.30, AA 95.71; 16 rings: SA 97.16, AA 93.43 (92.16 without the lone rings), the walking
+// person 20.0 % (2.5 % when its lowest ring was taken for the ground)), as a guard against
+// regressions on the way to issue 20's SA >= 98.
 TEST(RealKittiRings, SparserCopiesOf04KeepTheirRingsAndLabelsAndAreCleaned)
 {
     const std::string dir = hif::test::kittiRoot() + "/sequences/04";
     HIF_REQUIRE_KITTI_SEQUENCE(dir);
     const WorkDir work = workDir("kitti04_rings");
     for (const auto& [k, sa_floor, aa_floor, person_floor] :
-         {std::tuple{2, 98.3, 95.0, 75.0}, std::tuple{4, 97.0, 91.8, 15.0}})
+         {std::tuple{2, 98.1, 95.3, 75.0}, std::tuple{4, 96.9, 92.8, 15.0}})
     {
         SCOPED_TRACE(k);
         const std::string seq = work.path() + "/every" + std::to_string(k);

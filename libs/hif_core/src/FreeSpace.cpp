@@ -239,12 +239,13 @@ struct ObjectTest
         return x.count >= kMinEntries && (x.top - x.bottom + 1) * res >= min_extent;
     }
 
-    /** The entries of pillar `p` of `scan` to test (into `tested`): clear of the pillar's
-     *  ground (ground()), within range, not dynamic already; and whether they, or those clear of
-     *  the ground and dynamic already, make an object: at least kMinEntries spanning
-     *  min_extent. */
+    /** The entries of pillar `p` of `scan` to test (into `tested`): `clear` cells or more
+     *  above the pillar's ground (ground()), within range, not dynamic already; and whether
+     *  they, or those clear of the ground and dynamic already, make an object: at least
+     *  kMinEntries spanning min_extent. */
     Found entries(const ScanBuckets& scan, std::size_t p, const PointsView& pts,
-                  const std::vector<uint8_t>& is_dynamic, std::vector<uint32_t>& tested) const
+                  const std::vector<uint8_t>& is_dynamic, std::vector<uint32_t>& tested,
+                  int32_t clear) const
     {
         const uint32_t b = scan.offsets[p], e = scan.offsets[p + 1];
         int32_t lowest = std::numeric_limits<int32_t>::max();
@@ -255,7 +256,7 @@ struct ObjectTest
         for (uint32_t k = b; k < e; ++k)
         {
             const uint32_t i = scan.index[k];
-            if (scan.cells[k] < low + clearance) continue;
+            if (scan.cells[k] < low + clear) continue;
             const double x = pts.x[i], y = pts.y[i], z = pts.z[i];
             if (x * x + y * y + z * z > range2) continue;
             if (is_dynamic[i])
@@ -543,7 +544,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     std::vector<std::size_t> small;  // pillars with too little above the ground for an object
     for (std::size_t p = 0; p < scan.pillarCount(); ++p)
     {
-        const auto found = object.entries(scan, p, pts, is_dynamic, tested);
+        const auto found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance);
         bool mover = found.moving;
         if (found.object)
         {
@@ -553,7 +554,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
                 mover = true;
             }
         }
-        else if (!tested.empty())
+        else
             small.push_back(p);
         if (mover)
         {
@@ -565,7 +566,10 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // lowest parts (feet, wheels, bumpers): too little there to make an object of their own,
     // they are tested as part of it. So is what the map kept of it in its own pillar (a pillar
     // whose points the map found dynamic, but for too little to test alone: the wheels below a
-    // rider, a walker's last ring).
+    // rider, a walker's last ring). A pillar with nothing clear of its ground (all of it
+    // within the clearance of its lowest return: one ring, with sparse rings a car's sill alone
+    // in its pillar) is tested from its ground up: the ground there is seen occupied by the
+    // beams that meet it, a mover's low ring is seen through outside its time.
     std::sort(gone.begin(), gone.end());
     auto inOrNextToGone = [&](PillarIndex idx)
     {
@@ -580,7 +584,8 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     for (const std::size_t p : small)
     {
         if (!inOrNextToGone(unpackKey(scan.keys[p]))) continue;
-        const auto found = object.entries(scan, p, pts, is_dynamic, tested);
+        auto found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance);
+        if (tested.empty()) found = object.entries(scan, p, pts, is_dynamic, tested, 0);
         if (reachesShare(tested, prm.free_space_fraction, verdict)) mark(p, found.low);
     }
     return marked;
