@@ -11,6 +11,19 @@
 
 namespace hif
 {
+namespace
+{
+/** The top cell of the lowest interval of `pil` that `grid` keeps (its floor), or
+ *  ScanBuckets::kNoFloor: for the free-space test's ground. */
+int32_t floorTop(const PillarGrid& grid, const Pillar* pil)
+{
+    if (pil)
+        for (const Interval& iv : pil->intervals)
+            if (grid.isStaticLogOdds(iv.logodds)) return iv.hi - 1;
+    return detail::ScanBuckets::kNoFloor;
+}
+}  // namespace
+
 ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& is_dynamic,
                                    const Eigen::Isometry3d& T,
                                    const FreeSpaceTest* free_space) const
@@ -35,18 +48,7 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
                           {
                               const uint32_t b = scan.offsets[p], e = scan.offsets[p + 1];
                               const Pillar* pil = findPillar(unpackKey(scan.keys[p]));
-                              if (free_space_test)
-                              {
-                                  int32_t floor = detail::ScanBuckets::kNoFloor;
-                                  if (pil)
-                                      for (const Interval& iv : pil->intervals)
-                                          if (isStaticLogOdds(iv.logodds))
-                                          {
-                                              floor = iv.hi - 1;
-                                              break;
-                                          }
-                                  scan.floors[p] = floor;
-                              }
+                              if (free_space_test) scan.floors[p] = floorTop(*this, pil);
                               for (uint32_t k = b; k < e; ++k)
                               {
                                   bool stat = prior_static;
