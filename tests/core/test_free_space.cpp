@@ -411,6 +411,12 @@ TEST(FreeSpaceTest, AScanIsNoEvidenceAboutItselfAndOnlineSeesThePastOnly)
     before.add(now, map_only);
     after.add(now, dyn);
     EXPECT_GT(online.seen_through_points, 0u);
+    // Every point the test turned dynamic is counted, the repeats of a marked point included.
+    std::size_t turned = 0;
+    for (std::size_t i = 0; i < dyn.size(); ++i) turned += dyn[i] == 1 && map_only[i] == 0;
+    EXPECT_EQ(online.seen_through_points, turned);
+    EXPECT_EQ(online.dynamic_points - online.seen_through_points,
+              static_cast<std::size_t>(std::count(map_only.begin(), map_only.end(), 1)));
     EXPECT_GE(after.pct(kPerson), 90.0);
     EXPECT_LT(before.pct(kPerson), after.pct(kPerson) - 20.0);
     // The first scan has no past: nothing shows its walker gone.

@@ -67,9 +67,9 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
     st.static_points = n_static;
     if (free_space_test)
     {
-        st.seen_through_points = detail::markSeenThrough(*this, scan, pts, T, *free_space,
-                                                         is_dynamic, st.free_space_scans);
-        st.static_points -= st.seen_through_points;
+        const std::size_t marked = detail::markSeenThrough(*this, scan, pts, T, *free_space,
+                                                           is_dynamic, st.free_space_scans);
+        st.static_points -= marked;
     }
     // A repeat has the pillar and height cell of the point before it, hence its class.
     for (std::size_t i = 1; i < pts.size; ++i)
@@ -78,6 +78,14 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
             is_dynamic[i] = is_dynamic[i - 1];
             st.static_points += is_dynamic[i] == 0;
         }
+    // The points the free-space test removed, their repeats included.
+    if (free_space_test)
+        for (uint8_t& d : is_dynamic)
+            if (d == detail::kSeenThrough)
+            {
+                d = 1;
+                ++st.seen_through_points;
+            }
     // Points that bucketPoints() skipped: non-finite ones are invalid (dynamic), those nearer
     // than the minimum range dynamic; finite ones beyond the int32 index range lie in unknown
     // space, which has the prior.

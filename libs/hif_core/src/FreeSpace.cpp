@@ -535,7 +535,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             if (is_dynamic[i] || scan.cells[k] < low + below ||
                 x * x + y * y + z * z > object.range2)
                 continue;
-            is_dynamic[i] = 1;
+            is_dynamic[i] = kSeenThrough;
             ++marked;
         }
     };
