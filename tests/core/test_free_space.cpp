@@ -21,6 +21,7 @@
 
 #include "hif/FreeSpaceTest.h"
 #include "hif/PillarGrid.h"
+#include "hif/SensorModel.h"
 
 using namespace hif;
 
@@ -70,11 +71,12 @@ void hitBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vec
     if (s0 <= s1) take(s0, w);
 }
 
-/** First hit along the ray o + s d of the ground, a wall across the view at x = `wall_x` and,
- *  if given, a person's box `person` (lo, hi corners), or kNothing; its range in `range`. */
+/** First hit along the ray o + s d of the ground (z = kGroundZ + crossfall y), a wall across
+ *  the view at x = `wall_x` and, if given, a person's box `person` (lo, hi corners), or
+ *  kNothing; its range in `range`. */
 What groundWallAndPerson(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double wall_x,
                          const std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>>& person,
-                         double& range)
+                         double& range, double crossfall = 0.0)
 {
     range = 80.0;
     What what = kNothing;
@@ -82,7 +84,8 @@ What groundWallAndPerson(const Eigen::Vector3d& o, const Eigen::Vector3d& d, dou
     {
         if (s > 1e-6 && s < range) range = s, what = w;
     };
-    if (d.z() < 0) take((kGroundZ - o.z()) / d.z(), kGround);
+    const double down = d.z() - crossfall * d.y();  // toward the ground plane
+    if (down < 0) take((kGroundZ + crossfall * o.y() - o.z()) / down, kGround);
     if (d.x() > 0) take((wall_x - o.x()) / d.x(), kWall);
     if (person) hitBox(o, d, person->first, person->second, kPerson, range, take);
     return what;
@@ -338,6 +341,74 @@ TEST(FreeSpaceTest, TheLowPartsOfAMoverGoWithItIntoTheNextPillars)
         for (const What w : {kGround, kWall, kPole, kHedge, kLow})
             EXPECT_EQ(with.removed[w], without.removed[w]) << "kind " << int(w);
     }
+}
+
+// Rings 1.7 degrees apart (a 16-beam LiDAR's), the sensor moving 0.5 m per scan toward a walker
+// who crosses 10 m ahead, over ground with a 10 % crossfall (terrain). Next to the walker's
+// pillars, a pillar holding one ring of ground has nothing clear of it and is tested from its
+// ground up; that ring runs along the beams (the scan's own beam above it lands beyond it, the one
+// below in front of it), so other scans' beams a little above it land beyond it on the same
+// ground: they say nothing of it, and it is not judged. The same map online, judging the last
+// scan with a test that holds it and with one that does not, gives the same classes.
+TEST(FreeSpaceTest, GroundAlongTheBeamsNextToAWalkerIsNotJudged)
+{
+    std::vector<double> rings;
+    for (double el = -20.0; el <= 4.0; el += 1.7) rings.push_back(el);
+    const SensorModel model = SensorModel::fromBeams(rings, 0.2);
+    const RangeImageLayout layout = RangeImageLayout::forSensor(model);
+    std::vector<Scan> scans;
+    for (int i = 0; i < 10; ++i)
+    {
+        Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+        pose.translation().x() = 0.5 * i;
+        const Eigen::Vector3d o = pose.translation();
+        const double y = -1.5 + 0.3 * i;
+        const std::pair<Eigen::Vector3d, Eigen::Vector3d> person{
+            Eigen::Vector3d(10.3, y - 0.2, kGroundZ),
+            Eigen::Vector3d(10.7, y + 0.2, kGroundZ + 1.7)};
+        scans.push_back(rayScan(
+            pose, 60.0,
+            [&](const Eigen::Vector3d& d, double& range)
+            { return groundWallAndPerson(o, d, 45.0, person, range, 0.1); },
+            1.7));
+    }
+    Params prm = freeSpaceParams();
+    PillarGrid grid(GridGeometry(), prm);
+    grid.setSensorModel(model);
+    for (const Scan& s : scans) grid.insertScan(s.view(), s.pose);
+    FreeSpaceTest test(scans.size());
+    for (const Scan& s : scans) test.add(s.view(), s.pose, layout);
+    Removed without, with;
+    for (const Scan& s : scans)
+    {
+        std::vector<uint8_t> dyn, dyn_map;
+        grid.classify(s.view(), dyn, s.pose, &test);
+        grid.classify(s.view(), dyn_map, s.pose);
+        with.add(s, dyn);
+        without.add(s, dyn_map);
+    }
+    // Measured: the map alone removes 87 % of the walker and 737 of 65,981 ground points (seen
+    // once, 1.1 %); with the test, 96 % of the walker and 322 more ground points (0.5 %), 792
+    // more (1.2 %) when such ground was judged.
+    EXPECT_GE(with.pct(kPerson), 95.0);
+    EXPECT_GT(with.n[kGround], 50000u);
+    EXPECT_LE(with.removed[kGround] - without.removed[kGround], with.n[kGround] * 8 / 1000);
+
+    prm.online = true;
+    PillarGrid online(GridGeometry(), prm);
+    online.setSensorModel(model);
+    FreeSpaceTest past(FreeSpaceTest::capacityFor(prm));
+    for (const Scan& s : scans)
+    {
+        online.insertScan(s.view(), s.pose);
+        if (&s != &scans.back()) past.add(s.view(), s.pose, layout);
+    }
+    FreeSpaceTest with_last = past;
+    with_last.add(scans.back().view(), scans.back().pose, layout);
+    std::vector<uint8_t> held, unheld;
+    online.classify(scans.back().view(), held, scans.back().pose, &with_last);
+    online.classify(scans.back().view(), unheld, scans.back().pose, &past);
+    EXPECT_EQ(held, unheld);
 }
 
 TEST(FreeSpaceTest, OffByDefaultAndOnlyScansWithinTheWindowCount)

@@ -157,6 +157,38 @@ std::optional<BeamOffset> nearestBeamOffset(const Judge& j, const ImageCell& cel
     return offsetOf(range, cell, margin);
 }
 
+/** Whether world point `p` lies on a surface that runs along the beams of scan `own` (the
+ *  scan it was seen in), met at grazing incidence: in its column of `own`'s image, the nearest
+ *  beam on one side (up to one and a half beam spacings away: three rows of half a spacing)
+ *  returned beyond the margin of it and the nearest on the other side in front of it. The
+ *  ground, mostly: a beam a little above the point's direction lands beyond it on the same
+ *  surface, so another scan's beam that does so says nothing of the point. A surface that
+ *  faces the beams (a car's sill, a walker's legs) returns its neighbouring beams near it. */
+bool alongBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& margin)
+{
+    const auto cell = cellOf(own, p);
+    if (!cell) return false;
+    constexpr int kRows = 3;
+    const RangeImageLayout& l = *own.layout;
+    const double m = margin.at(cell->d);
+    int sides[2] = {0, 0};  // below, above: +1 beyond, -1 in front, 0 near the point or none
+    for (int dir = -1; dir <= 1; dir += 2)
+        for (int k = 1; k <= kRows; ++k)
+        {
+            const int r = cell->r + dir * k;
+            if (r < 0 || r >= l.rows) break;
+            // The point's column, else the nearer return of the columns on each side.
+            float f = own.at(r, cell->c);
+            if (!std::isfinite(f))
+                f = std::min(own.at(r, (cell->c + 1) % l.cols),
+                             own.at(r, (cell->c + l.cols - 1) % l.cols));
+            if (!std::isfinite(f)) continue;
+            sides[dir > 0] = f > cell->d + m ? 1 : f < cell->d - m ? -1 : 0;
+            break;
+        }
+    return sides[0] * sides[1] == -1;
+}
+
 /** What the test's scans say about one point, all opinions taken together. */
 enum class Verdict : uint8_t
 {
@@ -581,12 +613,44 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
                     return true;
         return false;
     };
+    // Tested from its ground up, the pillar's ground is among what is tested: an entry on a
+    // surface along the beams (alongBeams(), seen in the scan's own image) is not judged.
+    std::optional<FreeSpaceTest> unheld;  // the scan's own image when the test does not hold it
+    std::optional<Judge> own;
+    auto ownJudge = [&]() -> const Judge&
+    {
+        if (!own)
+        {
+            if (!self)
+            {
+                unheld.emplace(1);
+                unheld->add(pts, T, grid.imageLayout());
+            }
+            const FreeSpaceTest::Scan& s = self ? scans[*self] : unheld->scans().front();
+            own = Judge{0, s.sensor_to_world.translation(), s.sensor_to_world.linear().transpose(),
+                        &s.image, &s.layout};
+        }
+        return *own;
+    };
+    auto groundUpVerdict = [&](uint32_t k)
+    {
+        const uint32_t i = scan.index[k];
+        const Eigen::Vector3d p_w = R * Eigen::Vector3d(pts.x[i], pts.y[i], pts.z[i]) + t;
+        return alongBeams(ownJudge(), p_w, margin) ? Verdict::Unjudged : verdict(k);
+    };
     for (const std::size_t p : small)
     {
         if (!inOrNextToGone(unpackKey(scan.keys[p]))) continue;
         auto found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance);
-        if (tested.empty()) found = object.entries(scan, p, pts, is_dynamic, tested, 0);
-        if (reachesShare(tested, prm.free_space_fraction, verdict)) mark(p, found.low);
+        bool share = false;
+        if (!tested.empty())
+            share = reachesShare(tested, prm.free_space_fraction, verdict);
+        else
+        {
+            found = object.entries(scan, p, pts, is_dynamic, tested, 0);
+            share = reachesShare(tested, prm.free_space_fraction, groundUpVerdict);
+        }
+        if (share) mark(p, found.low);
     }
     return marked;
 }
