@@ -262,7 +262,7 @@ struct ObjectTest
     struct Found
     {
         int32_t low;  ///< the pillar's ground (ground())
-        bool object;  ///< the entries to test make an object
+        bool object;  ///< there are entries to test, and with those dynamic already make an object
         bool moving;  ///< those already dynamic (the map's verdict) make one
     };
 
@@ -272,9 +272,11 @@ struct ObjectTest
     }
 
     /** The entries of pillar `p` of `scan` to test (into `tested`): `clear` cells or more
-     *  above the pillar's ground (ground()), within range, not dynamic already; and whether
-     *  they, or those clear of the ground and dynamic already, make an object: at least
-     *  kMinEntries spanning min_extent. */
+     *  above the pillar's ground (ground()), within range, not dynamic already; whether all
+     *  entries clear of the ground, those to test and those dynamic already, make an object
+     *  (at least kMinEntries spanning min_extent: what the map found dynamic of an object is
+     *  still part of it; a car far away seen by two or three rings, its top ring dynamic
+     *  already, is an object only with it); and whether those dynamic already make one. */
     Found entries(const ScanBuckets& scan, std::size_t p, const PointsView& pts,
                   const std::vector<uint8_t>& is_dynamic, std::vector<uint32_t>& tested,
                   int32_t clear) const
@@ -284,22 +286,20 @@ struct ObjectTest
         for (uint32_t k = b; k < e; ++k) lowest = std::min(lowest, scan.cells[k]);
         const int32_t low = ground(scan, p, lowest);
         tested.clear();
-        Extent open, dynamic;
+        Extent all, dynamic;
         for (uint32_t k = b; k < e; ++k)
         {
             const uint32_t i = scan.index[k];
             if (scan.cells[k] < low + clear) continue;
             const double x = pts.x[i], y = pts.y[i], z = pts.z[i];
             if (x * x + y * y + z * z > range2) continue;
+            all.add(scan.cells[k]);
             if (is_dynamic[i])
-            {
                 dynamic.add(scan.cells[k]);
-                continue;
-            }
-            tested.push_back(k);
-            open.add(scan.cells[k]);
+            else
+                tested.push_back(k);
         }
-        return {low, isObject(open), isObject(dynamic)};
+        return {low, !tested.empty() && isObject(all), isObject(dynamic)};
     }
 };
 
