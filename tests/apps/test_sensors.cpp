@@ -103,7 +103,8 @@ TEST(HifSyntheticKitti, EachSensorScansWithItsOwnBeams)
 // scenes, cleaned end to end with the shipped defaults (the sensor model estimated from the
 // scans): floors a little under today's figures (scripts/sensors.sh, seed 1, 10 scans;
 // doc/sensors.md; the bicyclists on a VLP-16 and an HDL-32E 70.0 and 72.4 %, 55.2 and 68.9 %
-// before a mover's entries dynamic already counted toward its object).
+// before a mover's entries dynamic already counted toward its object; the walkers on a VLP-16
+// 72.8 %, 70.3 % before a pillar the map found all dynamic counted as a mover's).
 // And a model given in the config: used from the start, and a wrong one warned of.
 TEST(Sensors, EachSensorsClipIsCleanedWithTheDefaults)
 {
@@ -116,7 +117,7 @@ TEST(Sensors, EachSensorsClipIsCleanedWithTheDefaults)
     };
     for (const Floors& f : std::vector<Floors>{{"hdl-64e", 99.0, 99.3, 99.6, 86.0, 99.6, 90.0},
                                                {"hdl-32e", 98.4, 98.3, 99.5, 75.0, 99.6, 70.0},
-                                               {"vlp-16", 97.0, 95.0, 99.2, 68.0, 99.4, 66.0},
+                                               {"vlp-16", 97.0, 95.0, 99.2, 71.0, 99.4, 66.0},
                                                {"os1-128", 98.8, 99.3, 99.5, 87.0, 99.5, 91.0},
                                                {"mid-70", 73.5, 65.0, 82.0, 80.0, 82.0, 74.0}})
         for (const std::string scene : {"street", "walkers", "cyclists"})

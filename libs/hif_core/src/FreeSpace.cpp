@@ -263,7 +263,11 @@ struct ObjectTest
     {
         int32_t low;  ///< the pillar's ground (ground())
         bool object;  ///< there are entries to test, and with those dynamic already make an object
-        bool moving;  ///< those already dynamic (the map's verdict) make one
+        /** Those already dynamic (the map's verdict) make one; or the map found every return
+         *  of the pillar dynamic, its lowest included, and they make one from the lowest up:
+         *  nothing there is ground, which the map holds static (a car far away on a road that
+         *  climbs, whose lowest ring the test would otherwise take for the ground). */
+        bool moving;
     };
 
     [[nodiscard]] bool isObject(const Extent& x) const
@@ -286,20 +290,24 @@ struct ObjectTest
         for (uint32_t k = b; k < e; ++k) lowest = std::min(lowest, scan.cells[k]);
         const int32_t low = ground(scan, p, lowest);
         tested.clear();
-        Extent all, dynamic;
+        Extent all, dynamic, every;  // every: all within range, from the lowest up
+        bool every_dynamic = true;
         for (uint32_t k = b; k < e; ++k)
         {
             const uint32_t i = scan.index[k];
-            if (scan.cells[k] < low + clear) continue;
             const double x = pts.x[i], y = pts.y[i], z = pts.z[i];
             if (x * x + y * y + z * z > range2) continue;
+            every.add(scan.cells[k]);
+            every_dynamic = every_dynamic && is_dynamic[i] != 0;
+            if (scan.cells[k] < low + clear) continue;
             all.add(scan.cells[k]);
             if (is_dynamic[i])
                 dynamic.add(scan.cells[k]);
             else
                 tested.push_back(k);
         }
-        return {low, !tested.empty() && isObject(all), isObject(dynamic)};
+        return {low, !tested.empty() && isObject(all),
+                isObject(dynamic) || (every_dynamic && isObject(every))};
     }
 };
 
