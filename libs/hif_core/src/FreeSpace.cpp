@@ -544,6 +544,44 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         if ((mayDrift(settled_before, sized_before) && steady(self_pos, earlier)) ||
             (mayDrift(settled_after, sized_after) && steady(judges.size() - self_pos, later)))
             return Verdict::Gone;
+        // A surface that moved along the beams at a constant speed of more than the margin a
+        // scan (a car driving ahead of the sensor, seen from behind): each scan before it saw
+        // the point hidden by that surface, nearer by the same step for every scan further
+        // away in time, so that no judge settled the side. Walking out from the nearest judge
+        // in time, each beam toward the point that returned did so within the margin of n
+        // steps in front of it (n: the judge's distance in scans, the step that of the first
+        // one that returned), kSteadyJudges of them, the last beyond the margin. What hides a
+        // static point from other places stays where it is: its offset is the same from
+        // judge to judge (or changes with the view), not a multiple of the time since the
+        // point was seen, from nothing, at the classified scan. The test keeps consecutive
+        // scans of the sensor, so scans are a constant time apart.
+        auto constantSpeed = [&](std::size_t count, auto judgeAt)
+        {
+            double step = 0.0;
+            std::size_t returned = 0;
+            for (std::size_t k = 0; k < count; ++k)
+            {
+                const std::size_t j = judgeAt(k);
+                const ImageCell* c = cellIn(j);
+                if (!c) return false;
+                const auto o = nearestBeamOffset(judges[j], *c, margin);
+                if (!o) continue;
+                const double scans_away = static_cast<double>(k + 1);
+                if (returned == 0)
+                    step = o->offset / scans_away;
+                else if (std::abs(o->offset - step * scans_away) > o->margin)
+                    return false;
+                if (++returned >= kSteadyJudges && std::abs(o->offset) > o->margin)
+                {
+                    judged = true;
+                    return true;
+                }
+            }
+            return false;
+        };
+        if ((settled_before == 0 && constantSpeed(self_pos, earlier)) ||
+            (settled_after == 0 && constantSpeed(judges.size() - self_pos, later)))
+            return Verdict::Gone;
         return judged ? Verdict::Held : Verdict::Unjudged;
     };
 
