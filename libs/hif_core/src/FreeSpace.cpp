@@ -499,6 +499,35 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         if (drifted(self_pos, earlier, settled_before) ||
             drifted(judges.size() - self_pos, later, settled_after))
             return Verdict::Gone;
+        // Walking out from the nearest judge in time on one side (`count` judges, the k-th
+        // nearest judgeAt(k)): each beam toward the point that returned goes to take(offset,
+        // k), which says whether the walk goes on, has found the surface it looks for, or has
+        // lost it; a judge that cannot see the point ends the walk.
+        enum class Walk : uint8_t
+        {
+            On,
+            Found,
+            Lost
+        };
+        auto walkOut = [&](std::size_t count, auto judgeAt, auto take)
+        {
+            for (std::size_t k = 0; k < count; ++k)
+            {
+                const std::size_t j = judgeAt(k);
+                const ImageCell* c = cellIn(j);
+                if (!c) return false;
+                const auto o = nearestBeamOffset(judges[j], *c, margin);
+                if (!o) continue;
+                const Walk w = take(*o, k);
+                if (w == Walk::Lost) return false;
+                if (w == Walk::Found)
+                {
+                    judged = true;
+                    return true;
+                }
+            }
+            return false;
+        };
         // A surface that moved steadily along the beams, either way, by less than the margin
         // (a person walking along the line of sight, seen occupied by every judge): walking
         // out from the nearest judge in time, each beam toward the point that returned did so
@@ -514,27 +543,20 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             double previous = 0.0;
             int side = 0;
             std::size_t returned = 0;  // judges whose beam toward the point returned
-            for (std::size_t k = 0; k < count; ++k)
-            {
-                const std::size_t j = judgeAt(k);
-                const ImageCell* c = cellIn(j);
-                if (!c) return false;
-                const auto o = nearestBeamOffset(judges[j], *c, margin);
-                if (!o) continue;
-                if (std::abs(o->offset - previous) > o->margin ||
-                    std::abs(o->offset) < std::abs(previous))
-                    return false;
-                const int s = (o->offset > 0.0) - (o->offset < 0.0);
-                if (s != 0 && side != 0 && s != side) return false;
-                if (s != 0) side = s;
-                previous = o->offset;
-                if (++returned >= kSteadyJudges && driftSize(previous, o->margin))
-                {
-                    judged = true;
-                    return true;
-                }
-            }
-            return false;
+            return walkOut(count, judgeAt,
+                           [&](const BeamOffset& o, std::size_t)
+                           {
+                               if (std::abs(o.offset - previous) > o.margin ||
+                                   std::abs(o.offset) < std::abs(previous))
+                                   return Walk::Lost;
+                               const int sign = (o.offset > 0.0) - (o.offset < 0.0);
+                               if (sign != 0 && side != 0 && sign != side) return Walk::Lost;
+                               if (sign != 0) side = sign;
+                               previous = o.offset;
+                               return ++returned >= kSteadyJudges && driftSize(previous, o.margin)
+                                          ? Walk::Found
+                                          : Walk::On;
+                           });
         };
         // Only where it can be found: the judge that settled the side is the farthest out
         // that saw the point within the margin, so a steady drift reaches its size there
@@ -559,25 +581,18 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         {
             double step = 0.0;
             std::size_t returned = 0;
-            for (std::size_t k = 0; k < count; ++k)
-            {
-                const std::size_t j = judgeAt(k);
-                const ImageCell* c = cellIn(j);
-                if (!c) return false;
-                const auto o = nearestBeamOffset(judges[j], *c, margin);
-                if (!o) continue;
-                const double scans_away = static_cast<double>(k + 1);
-                if (returned == 0)
-                    step = o->offset / scans_away;
-                else if (std::abs(o->offset - step * scans_away) > o->margin)
-                    return false;
-                if (++returned >= kSteadyJudges && std::abs(o->offset) > o->margin)
-                {
-                    judged = true;
-                    return true;
-                }
-            }
-            return false;
+            return walkOut(count, judgeAt,
+                           [&](const BeamOffset& o, std::size_t k)
+                           {
+                               const double scans_away = static_cast<double>(k + 1);
+                               if (returned == 0)
+                                   step = o.offset / scans_away;
+                               else if (std::abs(o.offset - step * scans_away) > o.margin)
+                                   return Walk::Lost;
+                               return ++returned >= kSteadyJudges && std::abs(o.offset) > o.margin
+                                          ? Walk::Found
+                                          : Walk::On;
+                           });
         };
         if ((settled_before == 0 && constantSpeed(self_pos, earlier)) ||
             (settled_after == 0 && constantSpeed(judges.size() - self_pos, later)))
