@@ -1,22 +1,23 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: BSD-3-Clause
 # The sensors suite: each simulated LiDAR of hif-synthetic-kitti (--sensor) in each scene
-# (street: cars and people; walkers; cyclists), 10 scans, cleaned offline with the shipped
-# defaults (or the hif-clean flags given) and scored per moving class: one line per sensor and
-# scene, SA, DA, AA and DA per class (car 252, cyclist 253, person 254).
+# (street: cars and people; walkers; cyclists; traffic: cars leading and following the
+# sensor), 10 scans, cleaned offline with the shipped defaults (or the hif-clean flags given,
+# e.g. --online) and scored per moving class: one line per sensor and scene, SA, DA, AA and DA
+# per class (car 252, cyclist 253, person 254).
 #
 #   bash scripts/sensors.sh                                      # shipped configs
 #   bash scripts/sensors.sh -c share/hif/config/kitti-paper.ini  # extra hif-clean flags
 #
 # Environment: HIF_SENSORS (default: every sensor), HIF_SENSORS_SCENES (default "street walkers
-# cyclists"), HIF_SENSORS_SCANS (default 10), HIF_SENSORS_SEED (default 1).
+# cyclists traffic"), HIF_SENSORS_SCANS (default 10), HIF_SENSORS_SEED (default 1).
 # Work files go to ${HIF_SENSORS_DIR:-build/sensors}/; clips are generated once and reused.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${HIF_BUILD_DIR:-build}/apps
 ROOT=${HIF_SENSORS_DIR:-build/sensors}
 SENSORS=${HIF_SENSORS:-hdl-64e hdl-32e vlp-16 os1-128 mid-70}
-SCENES=${HIF_SENSORS_SCENES:-street walkers cyclists}
+SCENES=${HIF_SENSORS_SCENES:-street walkers cyclists traffic}
 SCANS=${HIF_SENSORS_SCANS:-10}
 SEED=${HIF_SENSORS_SEED:-1}
 for app in hif-synthetic-kitti hif-clean hif-eval; do

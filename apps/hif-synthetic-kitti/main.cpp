@@ -33,13 +33,13 @@ struct Cli
     TCLAP::ValueArg<long long> seed{"",  "seed", "Random seed of the scene (default: 1)", false, 1,
                                     "S", cmd};
     TCLAP::ValueArg<std::string> scene{
-        "",    "scene",  "street (default), walkers, radial or cyclists",
-        false, "street", "street|walkers|radial|cyclists",
+        "",    "scene",  "street (default), walkers, radial, cyclists or traffic",
+        false, "street", "street|walkers|radial|cyclists|traffic",
         cmd};
     TCLAP::ValueArg<double> ego_speed{
         "",
         "ego-speed",
-        "Speed of the sensor, m/s, >= 0 (default: 8 for street, 3 for the others)",
+        "Speed of the sensor, m/s, >= 0 (default: 8 for street, 12 for traffic, 3 for the others)",
         false,
         8.0,
         "m/s",
@@ -47,7 +47,8 @@ struct Cli
     TCLAP::ValueArg<int> groups{
         "",
         "groups",
-        "Walkers, radial and cyclists scenes: groups of people or cyclists (default: 6)",
+        "Walkers, radial, cyclists and traffic scenes: groups of people or cyclists, or vehicles "
+        "(default: 6)",
         false,
         6,
         "N",

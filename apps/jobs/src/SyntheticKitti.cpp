@@ -38,10 +38,13 @@ SyntheticKittiResult SyntheticKitti::run(std::ostream& log) const
     const auto seed = static_cast<std::mt19937::result_type>(
         hif::apps::flagInRange(o.seed, "--seed", 0, 4294967295LL));
     const std::string& kind = o.scene;
-    if (kind != "street" && kind != "walkers" && kind != "radial" && kind != "cyclists")
+    if (kind != "street" && kind != "walkers" && kind != "radial" && kind != "cyclists" &&
+        kind != "traffic")
         throw std::runtime_error("--scene '" + kind +
-                                 "' is not street, walkers, radial or cyclists");
-    const double ego_speed = o.ego_speed.value_or(kind == "street" ? 8.0 : 3.0);
+                                 "' is not street, walkers, radial, cyclists or traffic");
+    const double ego_speed = o.ego_speed.value_or(kind == "street"    ? 8.0
+                                                  : kind == "traffic" ? 12.0
+                                                                      : 3.0);
     if (!(ego_speed >= 0.0 && ego_speed <= 60.0))
         throw std::runtime_error("--ego-speed " + std::to_string(ego_speed) +
                                  " is not in [0, 60] m/s");
@@ -63,6 +66,7 @@ SyntheticKittiResult SyntheticKitti::run(std::ostream& log) const
     const Scene scene = kind == "street"    ? streetScene(rng, length)
                         : kind == "walkers" ? walkersScene(rng, length, duration, groups)
                         : kind == "radial"  ? radialWalkersScene(rng, length, duration, groups)
+                        : kind == "traffic" ? trafficScene(rng, length, duration, ego_speed, groups)
                                             : cyclistsScene(rng, length, duration, groups);
     std::normal_distribution<double> noise(0.0, 0.01);
 

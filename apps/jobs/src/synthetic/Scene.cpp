@@ -338,4 +338,50 @@ Scene cyclistsScene(std::mt19937& rng, double length, double duration, int group
     return s;
 }
 
+Scene trafficScene(std::mt19937& rng, double length, double duration, double ego_speed, int groups)
+{
+    Scene s;
+    addStreet(s, rng, length);
+    std::uniform_real_distribution<double> u(0, 1);
+    const double t_mid = 0.5 * duration, x_mid = 0.5 * length;
+    uint32_t id = 1;
+    for (int g = 0; g < groups; ++g)
+    {
+        const int kind = std::min(3, static_cast<int>(4 * u(rng)));
+        const bool van = u(rng) < 1.0 / 3.0;
+        Mover m;
+        m.size = van ? Eigen::Vector3d(5.0, 2.0, 2.5) : Eigen::Vector3d(4.4, 1.9, 1.5);
+        m.label = kMovingCar;
+        m.instance = id++;
+        // Where it is at mid-clip, and its velocity along x: its lane, the sensor's (y = 0)
+        // or the next one (y = -3, the same way; y = +3, the other way).
+        double x = 0.0, y = 0.0, v = 0.0;
+        switch (kind)
+        {
+            case 0:  // ahead, at about the sensor's speed
+                x = x_mid + 12.0 + 18.0 * u(rng);
+                v = ego_speed * (0.9 + 0.2 * u(rng));
+                break;
+            case 1:  // behind, at about the sensor's speed
+                x = x_mid - 10.0 - 15.0 * u(rng);
+                v = ego_speed * (0.9 + 0.2 * u(rng));
+                break;
+            case 2:  // the next lane, 1 to 3 m/s faster or slower
+                x = x_mid + (u(rng) < 0.5 ? -1.0 : 1.0) * (5.0 + 20.0 * u(rng));
+                y = -3.0;
+                v = ego_speed + (u(rng) < 0.5 ? -1.0 : 1.0) * (1.0 + 2.0 * u(rng));
+                break;
+            default:  // the other way
+                x = x_mid + 15.0 + 25.0 * u(rng);
+                y = 3.0;
+                v = -(8.0 + 6.0 * u(rng));
+                break;
+        }
+        m.velocity = Eigen::Vector3d(v, 0.0, 0.0);
+        m.start = Eigen::Vector3d(x, y, 0.0) - m.velocity * t_mid;
+        s.movers.push_back(m);
+    }
+    return s;
+}
+
 }  // namespace synth

@@ -104,4 +104,11 @@ Scene radialWalkersScene(std::mt19937& rng, double length, double duration, int 
  *  way, or across it, 8 to 35 m from the sensor at mid-clip. */
 Scene cyclistsScene(std::mt19937& rng, double length, double duration, int groups);
 
+/** The same street with traffic around the sensor, which drives along x at `ego_speed` m/s:
+ *  `groups` vehicles (a third of them vans taller than the sensor), each driving ahead of it
+ *  in its lane at about its speed (12 to 30 m on at mid-clip), behind it at about its speed,
+ *  in the next lane a little faster or slower, or the other way: the cars that follow or lead
+ *  the sensor hide their own next places from the scans before. */
+Scene trafficScene(std::mt19937& rng, double length, double duration, double ego_speed, int groups);
+
 }  // namespace synth

@@ -19,14 +19,15 @@ namespace hif::jobs
 /** What to render; the flags of hif-synthetic-kitti, which the job's messages name. */
 struct SyntheticKittiOptions
 {
-    std::string output;               ///< -o: the sequence folder
-    long long scans = 30;             ///< -n
-    long long seed = 1;               ///< --seed
-    std::string scene = "street";     ///< --scene: street, walkers, radial or cyclists
-    std::optional<double> ego_speed;  ///< --ego-speed, m/s (default: 8 street, 3 the others)
-    long long groups = 6;             ///< --groups (walkers, radial, cyclists)
-    std::string sensor = "hdl-64e";   ///< --sensor
-    bool overwrite = false;           ///< --overwrite
+    std::string output;            ///< -o: the sequence folder
+    long long scans = 30;          ///< -n
+    long long seed = 1;            ///< --seed
+    std::string scene = "street";  ///< --scene: street, walkers, radial, cyclists or traffic
+    std::optional<double>
+        ego_speed;         ///< --ego-speed, m/s (default: 8 street, 12 traffic, 3 the others)
+    long long groups = 6;  ///< --groups (walkers, radial, cyclists, traffic)
+    std::string sensor = "hdl-64e";  ///< --sensor
+    bool overwrite = false;          ///< --overwrite
     bool show_progress = true;
 };
 
