@@ -38,6 +38,13 @@ struct Judge
     const RangeImageLayout* layout;
     double baseline = 0.0;  ///< distance to the classified scan's sensor
 
+    /** Scan `s`, at position `pos` in FreeSpaceTest::scans(). */
+    static Judge of(const FreeSpaceTest::Scan& s, std::size_t pos)
+    {
+        return {pos, s.sensor_to_world.translation(), s.sensor_to_world.linear().transpose(),
+                &s.image, &s.layout};
+    }
+
     /** Range of the nearest return in cell (r, c), metres; +inf for none. */
     [[nodiscard]] float at(int r, int c) const
     {
@@ -359,9 +366,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     {
         if (self && (k == *self || (k < *self ? *self - k : k - *self) > prm.free_space_window))
             continue;
-        const FreeSpaceTest::Scan& s = scans[k];
-        judges.push_back({k, s.sensor_to_world.translation(),
-                          s.sensor_to_world.linear().transpose(), &s.image, &s.layout});
+        judges.push_back(Judge::of(scans[k], k));
     }
     judge_count = judges.size();
     if (judges.empty()) return 0;
@@ -687,9 +692,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
                 unheld.emplace(1);
                 unheld->add(pts, T, grid.imageLayout());
             }
-            const FreeSpaceTest::Scan& s = self ? scans[*self] : unheld->scans().front();
-            own = Judge{0, s.sensor_to_world.translation(), s.sensor_to_world.linear().transpose(),
-                        &s.image, &s.layout};
+            own = self ? Judge::of(scans[*self], *self) : Judge::of(unheld->scans().front(), 0);
         }
         return *own;
     };
