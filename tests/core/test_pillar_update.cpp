@@ -598,6 +598,66 @@ bool carStaticAfter(double see_through_range, const std::vector<Beams>& beams)
 }
 }  // namespace
 
+TEST(PassedCells, RecordsTheCellsBeamsCrossedInAWindowFromTheLowest)
+{
+    PassedCells p;
+    EXPECT_FALSE(p.any(-1000, 1000));  // nothing recorded yet
+    p.add(10, 12);
+    EXPECT_TRUE(p.any(11, 20));
+    EXPECT_FALSE(p.any(12, 20));  // exclusive end
+    EXPECT_FALSE(p.any(0, 10));
+    // A lower cell moves the window down; what was recorded stays.
+    p.add(-5, -4);
+    EXPECT_EQ(p.base, -5);
+    EXPECT_TRUE(p.any(-5, -4));
+    EXPECT_TRUE(p.any(10, 11));
+    EXPECT_FALSE(p.any(-4, 10));
+    // Above the window (kCells from the lowest): not recorded.
+    p.add(-5 + PassedCells::kCells, -5 + PassedCells::kCells + 3);
+    EXPECT_FALSE(p.any(-5 + PassedCells::kCells, 1000));
+    p.add(-5 + PassedCells::kCells - 1, -5 + PassedCells::kCells + 3);  // its last cell is in
+    EXPECT_TRUE(p.any(-5 + PassedCells::kCells - 1, -5 + PassedCells::kCells));
+    // Moving down by more than the window drops everything above it.
+    p.add(-500, -499);
+    EXPECT_TRUE(p.any(-500, -499));
+    EXPECT_FALSE(p.any(-499, 1000));
+}
+
+// p_empty is evidence only of the heights beams were seen passing through (with
+// miss_needs_beam): a pillar whose ground was seen under beams that passed 1.5-2 m above it,
+// scan after scan, has a low p_empty; a low wall then seen at 0.4-0.7 m, where no beam passed
+// (a sparse LiDAR's rings pass above it, something hid it before), starts from p_empty_init
+// and is kept; something seen where the beams passed starts from the low p_empty.
+TEST(EmptyPrior, ANewIntervalStartsFromPEmptyOnlyWhereBeamsWereSeenPassing)
+{
+    auto staticAfter = [](bool gate, double object_z)
+    {
+        Params prm;
+        prm.miss_needs_beam = gate;
+        prm.sensor_from_scans = false;
+        prm.p_empty_init = 0.42;  // a second sighting wanted, as offline
+        PillarGrid grid(GridGeometry(), prm);
+        // The sensor 1.7 m above the ground; the pillar (20, 0) ahead.
+        const double ground = -1.7;
+        for (int s = 0; s < 6; ++s)
+        {
+            std::vector<float> x{20.5f}, y{0.5f}, z{float(ground)};
+            beamsToward(20.5, 0.5, ground + 1.5, ground + 2.0, 40.0, x, y, z);
+            grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+        }
+        EXPECT_LT(grid.findPillar({20, 0})->logodds_empty, logit(0.3)) << "seen empty";
+        // Seen twice (p_empty_init 0.42 wants a second sighting).
+        std::vector<float> x{20.5f, 20.5f}, y{0.5f, 0.5f}, z{float(ground), float(object_z)};
+        for (int s = 0; s < 2; ++s) grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+        EXPECT_TRUE(grid.isStatic(20.5, 0.5, ground));
+        return grid.isStatic(20.5, 0.5, object_z);
+    };
+    EXPECT_TRUE(staticAfter(true, -1.7 + 0.55)) << "where no beam passed: p_empty_init";
+    EXPECT_FALSE(staticAfter(true, -1.7 + 1.75)) << "where the beams passed: p_empty";
+    // The paper's Eq. 14 (no gate): the pillar's p_empty at every height.
+    EXPECT_FALSE(staticAfter(false, -1.7 + 0.55));
+}
+
 TEST(SeeThroughMisses, BeamsThatPassedThroughAPillarEmptyIt)
 {
     // Off (the paper): a pillar no return falls in is untouched.

@@ -254,6 +254,12 @@ TEST(CHeightIntervalMapSerialization, Version0MapsStillLoad)
     loaded.read(in);
     hif::PillarGrid expected = map.grid();  // a version-0 map has no sensor model
     expected.setSensorModel(std::nullopt);
+    for (const auto& [idx, pillar] : map.grid().sortedPillars())  // nor passed cells
+    {
+        hif::Pillar without = *pillar;
+        without.passed = {};
+        expected.setPillar(idx, std::move(without));
+    }
     EXPECT_FALSE(loaded.grid().sensorModel());
     EXPECT_TRUE(loaded.grid() == expected);
     EXPECT_EQ(loaded.params(), map.params());
@@ -320,6 +326,50 @@ TEST(CHeightIntervalMapSerialization, ABoolOptionThatIsNeither0Nor1IsCorrupt)
 // Found by fuzz_map (tests/fuzz): a pillar's interval count, bounded only by the file's own
 // max_intervals_per_pillar, was allocated before its intervals were read: a short file could
 // ask for gigabytes. The intervals are read one at a time; the file ends first.
+// A pillar's passed cells (version 6) with bits but no base is corrupt: an error, not a record
+// that says beams passed somewhere unknown.
+TEST(CHeightIntervalMapSerialization, PassedCellsWithoutABaseAreCorrupt)
+{
+    CHeightIntervalMap map;
+    auto cloud = mrpt::maps::CSimplePointsMap::Create();
+    cloud->insertPoint(1.f, 1.f, 0.5f);
+    mrpt::obs::CObservationPointCloud obs;
+    obs.pointcloud = cloud;
+    map.insertObservation(obs, mrpt::poses::CPose3D());
+    ASSERT_EQ(map.grid().pillarCount(), 1u);
+    mrpt::io::CMemoryStream buf;
+    auto out = mrpt::serialization::archiveFrom(buf);
+    out << map;
+    // The one pillar's passed cells (base int32, two uint64) come before its interval count,
+    // its intervals (12 bytes each), the sensor model's flag, the free-space test's scan count
+    // and MRPT's end-of-object byte.
+    const auto intervals =
+        static_cast<std::size_t>(map.grid().sortedPillars().at(0).second->intervals.size());
+    std::vector<uint8_t> bytes(
+        static_cast<const uint8_t*>(buf.getRawBufferData()),
+        static_cast<const uint8_t*>(buf.getRawBufferData()) + buf.getTotalBytesCount());
+    const std::size_t at = bytes.size() - 6 - 12 * intervals - 4 - 20;
+    const int32_t none = hif::PassedCells::kNone;
+    const uint64_t one = 1;
+    std::memcpy(&bytes[at], &none, 4);
+    std::memcpy(&bytes[at + 4], &one, 8);
+    mrpt::io::CMemoryStream in_buf;
+    in_buf.Write(bytes.data(), bytes.size());
+    in_buf.Seek(0);
+    auto in = mrpt::serialization::archiveFrom(in_buf);
+    CHeightIntervalMap loaded;
+    try
+    {
+        in >> loaded;
+        FAIL() << "a corrupt record was read";
+    }
+    catch (const std::exception& e)
+    {
+        EXPECT_NE(std::string(e.what()).find("passed cells without a base"), std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(CHeightIntervalMapSerialization, AHugeIntervalCountInAShortFileIsNotAllocated)
 {
     CHeightIntervalMap map;

@@ -71,6 +71,7 @@ void PillarUpdater::update(Pillar& g, const Span* t, std::size_t nt, int32_t cei
     std::vector<Interval>& out = pieces_;
     const float empty_prior = g.logodds_empty;
     const int32_t seen_top = g.seen_top;
+    const PassedCells passed_before = g.passed;  // where empty_prior is evidence
     const Interval* const gi = g.intervals.data();
     const std::size_t ng = g.intervals.size();
     // LHP (Eq. 15): b_base is the lowest height the scan saw in this pillar.
@@ -93,7 +94,7 @@ void PillarUpdater::update(Pillar& g, const Span* t, std::size_t nt, int32_t cei
             hi = std::max(hi, t[nt - 1].hi);
         }
         if (ceiling != kAllHeights) hi = std::max(hi, ceiling);
-        seen_empty = gate->anyPassedThrough(lo, hi);
+        seen_empty = gate->seenEmpty(lo, hi, g.passed);
     }
 
     // The sweep below yields at most 2 (ng + nt) - 1 pieces, and two more for each run of
@@ -172,8 +173,20 @@ void PillarUpdater::update(Pillar& g, const Span* t, std::size_t nt, int32_t cei
         else if (in_t)
         {
             // Eq. 14: new, prior p_empty; unseen-height prior: p_empty_init where no scan
-            // could look before.
+            // could look before. With the gate, p_empty is evidence only of the heights beams
+            // were seen passing through, to within the merge gap (heights closer than that are
+            // one surface to the map): elsewhere (between two rings of a sparse LiDAR, behind
+            // what hid it before) the prior is p_empty_init too.
             float prior = model.unseen_prior && lo >= seen_top ? model.empty_init : empty_prior;
+            if (gate && prior != model.empty_init)
+            {
+                const int64_t gap = gate->widthsOf(lo, hi).gap;
+                constexpr int64_t kMin = std::numeric_limits<int32_t>::min();
+                constexpr int64_t kMax = std::numeric_limits<int32_t>::max();
+                if (!passed_before.any(static_cast<int32_t>(std::max(lo - gap, kMin)),
+                                       static_cast<int32_t>(std::min(hi + gap, kMax))))
+                    prior = model.empty_init;
+            }
             // Ground floors: no prior against a surface that does not move (neutral, 0.5) where
             // it was seen (the floor's core: its padding is a guess around it, where a car's
             // lower half may stand); asked once per pillar, only where a new piece arises.

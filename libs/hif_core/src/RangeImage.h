@@ -178,21 +178,49 @@ struct BeamGate
     }
 
     /** Whether any beam between those heights returned beyond the pillar (returns near it do
-     *  not veto): some of the pillar's free space was seen empty. */
-    [[nodiscard]] bool anyPassedThrough(int32_t lo, int32_t hi) const
+     *  not veto): some of the pillar's free space was seen empty. The heights within the
+     *  pillar of the rows of the image where a beam did so (after the first such row, the
+     *  beam toward its centre) go to `passed`: a row's band of elevations (half a beam
+     *  spacing: a ring's row, or for a sensor without rings the beams near that elevation),
+     *  not only the beam's own. */
+    [[nodiscard]] bool seenEmpty(int32_t lo, int32_t hi, PassedCells& passed) const
     {
         Axis a;
         if (!axisOf(lo, hi, a)) return false;
-        // From the top row down: beams above what stands in the pillar pass first. Distances
-        // compared squared: no square root per row.
+        const RangeImageLayout& l = *layout;
+        bool any = false;
+        int run_top = -1;  // the top row of the run of rows that passed, walking down
+        auto endRun = [&](int bottom)
+        {
+            if (run_top < 0) return;
+            const Span b = rowsCells(bottom, run_top + 1, a);
+            passed.add(b.lo, b.hi);
+            run_top = -1;
+        };
+        // From the top row down: beams above what stands in the pillar pass first; until one
+        // has, every column's beam counts for `any`, then only the centre's is read (each row
+        // is a cache miss). Distances compared squared: no square root per row.
+        const int centre = a.cols[a.ncols / 2];
         for (int row = a.row1; row >= a.row0; --row)
         {
-            const double dist2 = a.dist2(*layout, row);
             const BeamReturn* line = rowOf(row);
-            for (int k = 0; k < a.ncols; ++k)
-                if (beamOf(line[a.cols[k]], dist2) == Beam::Passed) return true;
+            const double dist2 = a.dist2(l, row);
+            bool row_passed = false;
+            if (!any)
+                for (int k = 0; k < a.ncols && !row_passed; ++k)
+                    row_passed = beamOf(line[a.cols[k]], dist2) == Beam::Passed;
+            else
+                row_passed = beamOf(line[centre], dist2) == Beam::Passed;
+            if (row_passed)
+            {
+                any = true;
+                if (run_top < 0) run_top = row;
+            }
+            else
+                endRun(row + 1);
         }
-        return false;
+        endRun(a.row0);
+        return any;
     }
 
     /** The height cells of [lo, hi) that beams passed through, as sorted disjoint spans in
@@ -642,6 +670,15 @@ private:
         const double beyond = r - margin, near = r + margin;
         if (beyond > 0.0 && beyond * beyond > dist2) return Beam::Passed;
         return near * near > dist2 ? Beam::Near : Beam::Front;
+    }
+
+    /** The cells the elevations of rows [row0, row1) of the image cross within the pillar,
+     *  [lo, hi) (not clipped to any interval). */
+    [[nodiscard]] Span rowsCells(int row0, int row1, const Axis& a) const
+    {
+        const Span b = crossedCells(layout->tan_min + row0 * layout->tan_res, a);
+        const Span t = crossedCells(layout->tan_min + row1 * layout->tan_res, a);
+        return {std::min(b.lo, t.lo), std::max(b.hi, t.hi)};
     }
 
     /** The cells a beam of elevation tangent `tan_el` crosses within the pillar, [lo, hi)

@@ -25,8 +25,10 @@ namespace
 /** Version 1 added the see-through options, version 2 the free-space test and the minimum
  *  range (Field::since_version), version 3 the sensor model (its option, and the model after
  *  the pillars), version 4 the `online` option and the free-space test's scans (after the
- *  model), version 5 the ground options; every older version is still read. */
-constexpr uint8_t kSerializationVersion = 5;
+ *  model), version 5 the ground options, version 6 each pillar's cells beams passed through
+ *  (Pillar::passed, after seen_top); every older version is still read (its pillars with no
+ *  such cells: what later scans insert there starts from p_empty_init until beams pass). */
+constexpr uint8_t kSerializationVersion = 6;
 /** More beams than any LiDAR has: a larger count in a file is corruption. */
 constexpr uint32_t kMaxBeams = 4096;
 /** A free-space image in a file has the layout of the map's sensor model, and at most this
@@ -172,7 +174,8 @@ void CHeightIntervalMap::serializeTo(mrpt::serialization::CArchive& out) const
     out << static_cast<uint64_t>(pillars.size());
     for (const auto& [idx, pillar] : pillars)
     {
-        out << idx.m << idx.n << pillar->logodds_empty << pillar->seen_top
+        out << idx.m << idx.n << pillar->logodds_empty << pillar->seen_top << pillar->passed.base
+            << pillar->passed.bits[0] << pillar->passed.bits[1]
             << static_cast<uint32_t>(pillar->intervals.size());
         for (const Interval& iv : pillar->intervals) out << iv.lo << iv.hi << iv.logodds;
     }
@@ -205,7 +208,15 @@ void CHeightIntervalMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_
         PillarIndex idx;
         Pillar pillar;
         uint32_t count = 0;
-        in >> idx.m >> idx.n >> pillar.logodds_empty >> pillar.seen_top >> count;
+        in >> idx.m >> idx.n >> pillar.logodds_empty >> pillar.seen_top;
+        if (version >= 6)
+        {
+            PassedCells& p = pillar.passed;
+            in >> p.base >> p.bits[0] >> p.bits[1];
+            if (p.base == PassedCells::kNone && (p.bits[0] != 0 || p.bits[1] != 0))
+                THROW_EXCEPTION("Corrupt hif map: a pillar's passed cells without a base");
+        }
+        in >> count;
         if (count > params().max_intervals_per_pillar)
             THROW_EXCEPTION_FMT("Corrupt hif map: pillar with %u intervals, above the bound",
                                 count);

@@ -28,19 +28,45 @@ struct Interval
     }
 };
 
+/** The height cells of a pillar that beams were seen passing through (Params::
+ *  miss_needs_beam): where its p_empty is evidence. One bit a cell, in a window of kCells
+ *  cells from `base`, the lowest cell passed through so far (a pillar's free space runs from
+ *  its ground up, 6.4 m at the default 5 cm cells); cells above the window are not recorded
+ *  (taken as never passed through). */
+struct PassedCells
+{
+    static constexpr int32_t kNone = std::numeric_limits<int32_t>::min();  ///< nothing yet
+    static constexpr int32_t kCells = 128;
+
+    int32_t base = kNone;
+    uint64_t bits[2] = {0, 0};
+
+    /** Records that beams passed through cells [lo, hi). */
+    void add(int32_t lo, int32_t hi);
+    /** Whether beams passed through any cell of [lo, hi). */
+    [[nodiscard]] bool any(int32_t lo, int32_t hi) const;
+
+    friend bool operator==(const PassedCells& a, const PassedCells& b)
+    {
+        return a.base == b.base && a.bits[0] == b.bits[0] && a.bits[1] == b.bits[1];
+    }
+};
+
 /** Global pillar P_mn = (p_empty, H_mn) (Eq. 4), plus the highest height cell that any scan
- *  could see in it so far (`seen_top`, exclusive; used by the unseen-height prior).
- *  Invariant: intervals are sorted by lo, non-empty (lo < hi) and non-overlapping
+ *  could see in it so far (`seen_top`, exclusive; used by the unseen-height prior) and the
+ *  cells beams passed through (`passed`: a new interval elsewhere does not start from
+ *  p_empty). Invariant: intervals are sorted by lo, non-empty (lo < hi) and non-overlapping
  *  (intervals[k].hi <= intervals[k+1].lo); two touching intervals never have equal log-odds. */
 struct Pillar
 {
     float logodds_empty = 0.0f;
     int32_t seen_top = std::numeric_limits<int32_t>::min();
+    PassedCells passed;
     std::vector<Interval> intervals;
     friend bool operator==(const Pillar& a, const Pillar& b)
     {
         return a.logodds_empty == b.logodds_empty && a.seen_top == b.seen_top &&
-               a.intervals == b.intervals;
+               a.passed == b.passed && a.intervals == b.intervals;
     }
 };
 

@@ -84,9 +84,11 @@ public:
      *  kept as they are, and with its unseen_prior, new intervals at or above the pillar's
      *  previous seen_top start from the model's empty_init. With `gate`, an interval (or the
      *  part of it) the scan did not hit gets its Eq. 13 miss only where a beam of the scan
-     *  passed through it (BeamGate::passedThrough()); elsewhere the scan could not see it and
-     *  it is kept as it is; and p_empty is lowered (Eq. 8) only when some beam passed through
-     *  the pillar between its lowest content and `ceiling` (BeamGate::anyPassedThrough()). */
+     *  passed through it (BeamGate::passedCells()); elsewhere the scan could not see it and
+     *  it is kept as it is; p_empty is lowered (Eq. 8) only when some beam passed through
+     *  the pillar between its lowest content and `ceiling` (BeamGate::seenEmpty()), and the
+     *  cells those beams crossed are recorded (Pillar::passed); a new interval that no earlier
+     *  beam passed within the merge gap of starts from the model's empty_init. */
     void update(Pillar& g, const Span* t, std::size_t nt, int32_t ceiling = kAllHeights,
                 const BeamGate* gate = nullptr);
 
