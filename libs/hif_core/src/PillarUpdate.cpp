@@ -178,9 +178,9 @@ void PillarUpdater::update(Pillar& g, const Span* t, std::size_t nt, int32_t cei
             // one surface to the map): elsewhere (between two rings of a sparse LiDAR, behind
             // what hid it before) the prior is p_empty_init too.
             float prior = model.unseen_prior && lo >= seen_top ? model.empty_init : empty_prior;
-            if (gate && prior != model.empty_init)
+            if (gate && prior != model.empty_init && !passed_before.any(lo, hi))
             {
-                const int64_t gap = gate->widthsOf(lo, hi).gap;
+                const int64_t gap = gate->widthsOf(lo, hi).gap;  // only asked where needed
                 constexpr int64_t kMin = std::numeric_limits<int32_t>::min();
                 constexpr int64_t kMax = std::numeric_limits<int32_t>::max();
                 if (!passed_before.any(static_cast<int32_t>(std::max(lo - gap, kMin)),
