@@ -29,6 +29,7 @@
 #include "hif/CHeightIntervalMap.h"
 #include "hif/io/KittiSequence.h"
 #include "kitti_fixture.h"
+#include "map_bytes.h"
 
 using hif::CHeightIntervalMap;
 
@@ -243,34 +244,14 @@ TEST(FreeSpaceMap, ACorruptImageInASavedMapIsRefused)
     obs.pointcloud = points;
     map.insertObservation(obs, mrpt::poses::CPose3D());
     ASSERT_EQ(map.freeSpaceTest().size(), 1u);
-    mrpt::io::CMemoryStream buf;
-    auto out = mrpt::serialization::archiveFrom(buf);
-    out << map;
-    const auto* data = static_cast<const uint8_t*>(buf.getRawBufferData());
-    const std::vector<uint8_t> bytes(data, data + buf.getTotalBytesCount());
+    const std::vector<uint8_t> bytes = hif::test::mapBytes(map);
     const hif::RangeImageLayout& l = map.grid().imageLayout();
     const int32_t layout[2] = {l.cols, l.rows};
     const auto at =
         std::search(bytes.begin(), bytes.end(), reinterpret_cast<const uint8_t*>(layout),
                     reinterpret_cast<const uint8_t*>(layout) + 8);
     ASSERT_NE(at, bytes.end());
-    auto load = [](std::vector<uint8_t> b)
-    {
-        mrpt::io::CMemoryStream in_buf;
-        in_buf.Write(b.data(), b.size());
-        in_buf.Seek(0);
-        auto in = mrpt::serialization::archiveFrom(in_buf);
-        CHeightIntervalMap loaded;
-        try
-        {
-            in >> loaded;
-        }
-        catch (const std::exception& e)
-        {
-            return std::string(e.what());
-        }
-        return std::string();
-    };
+    const auto load = hif::test::loadError;
     EXPECT_EQ(load(bytes), "");
     std::vector<uint8_t> bad = bytes;
     const int32_t huge = 7200 * 3600;
