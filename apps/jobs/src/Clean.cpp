@@ -75,7 +75,8 @@ void describeSensor(const hif::SensorModel& m, const std::string& source, std::o
         log << Clean::kTag
             << " note   : with a sensor without rings, hif removes far more static points than "
                "with a spinning LiDAR (doc/sensors.md, \"What does not work well yet\"): check "
-               "removed.* before using the static map\n";
+               "removed.* before using the static map, or keep far more of them, and fewer "
+               "movers removed, with p_empty_init=0.5\n";
 }
 
 /** Checks the command line, opens the input, creates the maps; refuses to replace earlier
