@@ -621,6 +621,14 @@ TEST(PassedCells, RecordsTheCellsBeamsCrossedInAWindowFromTheLowest)
     p.add(-500, -499);
     EXPECT_TRUE(p.any(-500, -499));
     EXPECT_FALSE(p.any(-499, 1000));
+    // The lowest cell of all is kNone's value: a record from it starts one cell above, and
+    // stays a record (a map that saves it loads again).
+    PassedCells q;
+    q.add(PassedCells::kNone, PassedCells::kNone + 3);
+    EXPECT_EQ(q.base, PassedCells::kNone + 1);
+    EXPECT_TRUE(q.any(PassedCells::kNone, PassedCells::kNone + 3));
+    q.add(PassedCells::kNone, PassedCells::kNone + 1);  // nothing left of it
+    EXPECT_EQ(q.base, PassedCells::kNone + 1);
 }
 
 // p_empty is evidence only of the heights beams were seen passing through (with

@@ -33,6 +33,7 @@ uint64_t wordMask(int64_t a, int64_t b, int w)
 
 void PassedCells::add(int32_t lo, int32_t hi)
 {
+    lo = std::max(lo, kNone + 1);  // the lowest cell is kNone's value: one above it
     if (lo >= hi) return;
     if (base == kNone)
         base = lo;

@@ -41,7 +41,8 @@ struct PassedCells
     int32_t base = kNone;
     uint64_t bits[2] = {0, 0};
 
-    /** Records that beams passed through cells [lo, hi). */
+    /** Records that beams passed through cells [lo, hi) (the lowest cell, kNone's value, is
+     *  not recorded). */
     void add(int32_t lo, int32_t hi);
     /** Whether beams passed through any cell of [lo, hi). */
     [[nodiscard]] bool any(int32_t lo, int32_t hi) const;
