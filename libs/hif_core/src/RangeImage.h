@@ -200,27 +200,30 @@ struct BeamGate
         // From the top row down: beams above what stands in the pillar pass first; until one
         // has, every column's beam counts for `any`, then only the centre's is read (each row
         // is a cache miss). Distances compared squared: no square root per row.
-        const int centre = a.cols[a.ncols / 2];
-        for (int row = a.row1; row >= a.row0; --row)
+        int row = a.row1;
+        for (; row >= a.row0 && !any; --row)
         {
             const BeamReturn* line = rowOf(row);
             const double dist2 = a.dist2(l, row);
-            bool row_passed = false;
-            if (!any)
-                for (int k = 0; k < a.ncols && !row_passed; ++k)
-                    row_passed = beamOf(line[a.cols[k]], dist2) == Beam::Passed;
-            else
-                row_passed = beamOf(line[centre], dist2) == Beam::Passed;
-            if (row_passed)
+            for (int k = 0; k < a.ncols && !any; ++k)
+                any = beamOf(line[a.cols[k]], dist2) == Beam::Passed;
+            if (any) run_top = row;
+        }
+        if (!any) return false;
+        // The rest of the centre's column, down the image a row (l.cols cells) at a time.
+        const BeamReturn* cell = rowOf(row + 1) + a.cols[a.ncols / 2];
+        for (; row >= a.row0; --row)
+        {
+            cell -= l.cols;
+            if (beamOf(*cell, a.dist2(l, row)) == Beam::Passed)
             {
-                any = true;
                 if (run_top < 0) run_top = row;
             }
             else
                 endRun(row + 1);
         }
         endRun(a.row0);
-        return any;
+        return true;
     }
 
     /** The height cells of [lo, hi) that beams passed through, as sorted disjoint spans in
