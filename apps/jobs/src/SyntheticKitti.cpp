@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -23,12 +24,52 @@
 
 namespace hif::jobs
 {
+using namespace synth;
+
 namespace
 {
 constexpr double kScanPeriod = 0.1;  // s (10 Hz)
-}  // namespace
 
-using namespace synth;
+/** A scene of --scene: its name, the sensor's speed when --ego-speed is not given (m/s), and
+ *  how it is made (a street `length` m long, a clip `duration` s long). */
+struct SceneKind
+{
+    const char* name;
+    double default_speed;
+    Scene (*make)(std::mt19937& rng, double length, double duration, double ego_speed, int groups);
+};
+
+constexpr SceneKind kScenes[] = {
+    {"street", 8.0,
+     [](std::mt19937& rng, double length, double, double, int)
+     { return streetScene(rng, length); }},
+    {"walkers", 3.0,
+     [](std::mt19937& rng, double length, double duration, double, int groups)
+     { return walkersScene(rng, length, duration, groups); }},
+    {"radial", 3.0,
+     [](std::mt19937& rng, double length, double duration, double, int groups)
+     { return radialWalkersScene(rng, length, duration, groups); }},
+    {"cyclists", 3.0,
+     [](std::mt19937& rng, double length, double duration, double, int groups)
+     { return cyclistsScene(rng, length, duration, groups); }},
+    {"traffic", 12.0,
+     [](std::mt19937& rng, double length, double duration, double ego_speed, int groups)
+     { return trafficScene(rng, length, duration, ego_speed, groups); }},
+};
+
+/** The scene called `name`; an error naming every scene if there is none. */
+const SceneKind& sceneNamed(const std::string& name)
+{
+    std::string names;
+    const std::size_t n = std::size(kScenes);
+    for (std::size_t k = 0; k < n; ++k)
+    {
+        if (name == kScenes[k].name) return kScenes[k];
+        names += (k == 0 ? "" : k + 1 == n ? " or " : ", ") + std::string(kScenes[k].name);
+    }
+    throw std::runtime_error("--scene '" + name + "' is not " + names);
+}
+}  // namespace
 
 SyntheticKittiResult SyntheticKitti::run(std::ostream& log) const
 {
@@ -37,14 +78,8 @@ SyntheticKittiResult SyntheticKitti::run(std::ostream& log) const
     const auto n = static_cast<std::size_t>(hif::apps::flagInRange(o.scans, "--scans", 1, 999999));
     const auto seed = static_cast<std::mt19937::result_type>(
         hif::apps::flagInRange(o.seed, "--seed", 0, 4294967295LL));
-    const std::string& kind = o.scene;
-    if (kind != "street" && kind != "walkers" && kind != "radial" && kind != "cyclists" &&
-        kind != "traffic")
-        throw std::runtime_error("--scene '" + kind +
-                                 "' is not street, walkers, radial, cyclists or traffic");
-    const double ego_speed = o.ego_speed.value_or(kind == "street"    ? 8.0
-                                                  : kind == "traffic" ? 12.0
-                                                                      : 3.0);
+    const SceneKind& kind = sceneNamed(o.scene);
+    const double ego_speed = o.ego_speed.value_or(kind.default_speed);
     if (!(ego_speed >= 0.0 && ego_speed <= 60.0))
         throw std::runtime_error("--ego-speed " + std::to_string(ego_speed) +
                                  " is not in [0, 60] m/s");
@@ -63,11 +98,7 @@ SyntheticKittiResult SyntheticKitti::run(std::ostream& log) const
     const double length = ego_speed * kScanPeriod * double(n);
     const double duration = kScanPeriod * double(n);
     const int groups = static_cast<int>(o.groups);
-    const Scene scene = kind == "street"    ? streetScene(rng, length)
-                        : kind == "walkers" ? walkersScene(rng, length, duration, groups)
-                        : kind == "radial"  ? radialWalkersScene(rng, length, duration, groups)
-                        : kind == "traffic" ? trafficScene(rng, length, duration, ego_speed, groups)
-                                            : cyclistsScene(rng, length, duration, groups);
+    const Scene scene = kind.make(rng, length, duration, ego_speed, groups);
     std::normal_distribution<double> noise(0.0, 0.01);
 
     // KITTI's LiDAR-to-camera calibration, rounded: camera x = -y, y = -z, z = x.
