@@ -223,8 +223,9 @@ INSTANTIATE_TEST_SUITE_P(Sequences, RealKitti,
                                            std::make_tuple("04", 98.9, 95.0)));
 
 // Online (each scan judged with the past only, kitti-online.ini), floors a little under what the
-// shipped config measures: 01 SA 99.22, car DA 66.18; 03 SA 98.77 (97.83 before p_empty held
-// only where beams had passed); 04 SA 98.99, AA 92.61, person DA 59.74. Deterministic: a
+// shipped config measures: 01 SA 99.21, car DA 69.35 (66.18 before a pillar's lowest return
+// out of sight of the ground went with the mover); 03 SA 98.76 (97.83 before p_empty held only
+// where beams had passed); 04 SA 98.98, AA 92.65, person DA 59.74. Deterministic: a
 // failure is a regression.
 TEST(RealKittiOnline, OnlineCleaningMeetsTheFloors)
 {
@@ -234,7 +235,7 @@ TEST(RealKittiOnline, OnlineCleaningMeetsTheFloors)
         double sa, da;
     };
     for (const Floors& f :
-         std::vector<Floors>{{"01", 99.0, 65.0}, {"03", 98.5, 0.0}, {"04", 98.8, 85.0}})
+         std::vector<Floors>{{"01", 99.0, 68.0}, {"03", 98.5, 0.0}, {"04", 98.8, 85.0}})
     {
         SCOPED_TRACE(f.seq);
         const std::string dir = hif::test::kittiRoot() + "/sequences/" + f.seq;

@@ -196,6 +196,55 @@ bool alongBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& m
     return sides[0] * sides[1] == -1;
 }
 
+/** Whether scan `own` could not see below world point `p`, the lowest return of a pillar:
+ *  in its column of `own`'s image, the nearest beam below it (up to one and a half beam
+ *  spacings: three rows of half a spacing) returned in front of it by more than the margin,
+ *  from a standing face, which the beam below that one met within 45 degrees of the vertical
+ *  (a fence, a hedge, a parked car, a barrier between the lanes: what stands behind shows
+ *  above it, its lower part and its ground out of sight). Ground returns its beams one after
+ *  the other nearer and lower along the surface, flatter than that; a beam below that returned
+ *  nothing says nothing. */
+bool groundHidden(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& margin)
+{
+    const auto cell = cellOf(own, p);
+    if (!cell) return false;
+    constexpr int kRows = 3;
+    const RangeImageLayout& l = *own.layout;
+    const Eigen::Vector3d q = own.Rt * (p - own.t);
+    const double rxy = std::sqrt(q.x() * q.x() + q.y() * q.y());
+    const double ux = q.x() / rxy, uy = q.y() / rxy;
+    // The nearest return below `row` in the point's column, else the nearer of the columns on
+    // each side; its row, or -1.
+    auto below = [&](int row, float& range)
+    {
+        for (int r = row - 1; r >= std::max(0, row - kRows); --r)
+        {
+            range = own.at(r, cell->c);
+            if (!std::isfinite(range))
+                range = std::min(own.at(r, (cell->c + 1) % l.cols),
+                                 own.at(r, (cell->c + l.cols - 1) % l.cols));
+            if (std::isfinite(range)) return r;
+        }
+        return -1;
+    };
+    // A return of `row` at `range` along the point's azimuth, world frame: horizontal distance
+    // from the sensor and height.
+    auto place = [&](int row, float range)
+    {
+        const double tan_el = l.tan_min + (row + 0.5) * l.tan_res;
+        const double s = static_cast<double>(range) / std::sqrt(1.0 + tan_el * tan_el);
+        const Eigen::Vector3d w = own.Rt.transpose() * Eigen::Vector3d(s * ux, s * uy, s * tan_el);
+        return Eigen::Vector2d(std::sqrt(w.x() * w.x() + w.y() * w.y()), w.z());
+    };
+    float f1 = 0.0f, f2 = 0.0f;
+    const int r1 = below(cell->r, f1);
+    if (r1 < 0 || !(f1 < cell->d - margin.at(cell->d))) return false;
+    const int r2 = below(r1, f2);
+    if (r2 < 0) return false;
+    const Eigen::Vector2d a = place(r1, f1), b = place(r2, f2);
+    return std::abs(a.y() - b.y()) > std::abs(a.x() - b.x());
+}
+
 /** What the test's scans say about one point, all opinions taken together. */
 enum class Verdict : uint8_t
 {
@@ -243,12 +292,19 @@ struct ObjectTest
      *  a mover's own lowest ring (a walker's knees, a car's sill), which the clearance would
      *  keep out of the test; the floor the map saw there before shows where the ground is. A
      *  return less than an object's height above the floor is taken for the ground itself
-     *  (terrain, kerbs, a floor seen at another place in the pillar). */
-    [[nodiscard]] int32_t ground(const ScanBuckets& scan, std::size_t p, int32_t lowest) const
+     *  (terrain, kerbs, a floor seen at another place in the pillar). Without such a floor,
+     *  where the scan could not see below the lowest return (`hidden`, groundHidden()), that
+     *  return is no ground either: the ground lies below it, out of sight, and the lowest
+     *  return is clear of it. */
+    [[nodiscard]] int32_t ground(const ScanBuckets& scan, std::size_t p, int32_t lowest,
+                                 bool hidden) const
     {
         const int32_t top = scan.floors[p];
-        if (top == ScanBuckets::kNoFloor) return lowest;
-        return (static_cast<double>(lowest) - top) * res >= min_extent ? top : lowest;
+        if (top != ScanBuckets::kNoFloor && (static_cast<double>(lowest) - top) * res >= min_extent)
+            return top;
+        return hidden ? static_cast<int32_t>(std::max<int64_t>(std::numeric_limits<int32_t>::min(),
+                                                               int64_t{lowest} - clearance))
+                      : lowest;
     }
 
     /** Entries clear of the ground, counted with the height they span. */
@@ -277,6 +333,15 @@ struct ObjectTest
         bool moving;
     };
 
+    /** The entry of pillar `p` of `scan` in its lowest height cell (the first of them). */
+    [[nodiscard]] static uint32_t lowestEntry(const ScanBuckets& scan, std::size_t p)
+    {
+        uint32_t lowest = scan.offsets[p];
+        for (uint32_t k = lowest + 1; k < scan.offsets[p + 1]; ++k)
+            if (scan.cells[k] < scan.cells[lowest]) lowest = k;
+        return lowest;
+    }
+
     [[nodiscard]] bool isObject(const Extent& x) const
     {
         return x.count >= kMinEntries && (x.top - x.bottom + 1) * res >= min_extent;
@@ -290,12 +355,14 @@ struct ObjectTest
      *  already, is an object only with it); and whether those dynamic already make one. */
     Found entries(const ScanBuckets& scan, std::size_t p, const PointsView& pts,
                   const std::vector<uint8_t>& is_dynamic, std::vector<uint32_t>& tested,
-                  int32_t clear) const
+                  int32_t clear, bool hidden = false) const
     {
         const uint32_t b = scan.offsets[p], e = scan.offsets[p + 1];
-        int32_t lowest = std::numeric_limits<int32_t>::max();
-        for (uint32_t k = b; k < e; ++k) lowest = std::min(lowest, scan.cells[k]);
-        const int32_t low = ground(scan, p, lowest);
+        const int32_t lowest = scan.cells[lowestEntry(scan, p)];
+        const int32_t low = ground(scan, p, lowest, hidden);
+        // Below the ground the scan saw (the lowest return, when hidden): part of the object,
+        // not tested (other scans' beams toward it meet what hid it, or what it stands in).
+        const int32_t test_from = ground(scan, p, lowest, false);
         tested.clear();
         Extent all, dynamic, every;  // every: all within range, from the lowest up
         bool every_dynamic = true;
@@ -310,7 +377,7 @@ struct ObjectTest
             all.add(scan.cells[k]);
             if (is_dynamic[i])
                 dynamic.add(scan.cells[k]);
-            else
+            else if (scan.cells[k] >= test_from + clear)
                 tested.push_back(k);
         }
         return {low, !tested.empty() && isObject(all),
@@ -637,17 +704,50 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             ++marked;
         }
     };
+    // The scan's own image (groundHidden(), alongBeams()), built when the test does not hold
+    // the scan.
+    std::optional<FreeSpaceTest> unheld;
+    std::optional<Judge> own;
+    auto ownJudge = [&]() -> const Judge&
+    {
+        if (!own)
+        {
+            if (!self)
+            {
+                unheld.emplace(1);
+                unheld->add(pts, T, grid.imageLayout());
+            }
+            own = self ? Judge::of(scans[*self], *self) : Judge::of(unheld->scans().front(), 0);
+        }
+        return *own;
+    };
     std::vector<uint32_t> tested;
     std::vector<std::pair<int64_t, int64_t>> gone;  // pillars of a mover, (m, n)
     std::vector<std::size_t> small;  // pillars with too little above the ground for an object
+    // What the map found dynamic of a pillar, or the test shows gone, is part of a mover, and so
+    // is the pillar's lowest return where the scan could not see below it (groundHidden()).
+    auto lowestHidden = [&](std::size_t p)
+    {
+        const uint32_t i = scan.index[ObjectTest::lowestEntry(scan, p)];
+        const Eigen::Vector3d p_w = R * Eigen::Vector3d(pts.x[i], pts.y[i], pts.z[i]) + t;
+        return groundHidden(ownJudge(), p_w, margin);
+    };
     for (std::size_t p = 0; p < scan.pillarCount(); ++p)
     {
-        const auto found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance);
+        auto found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance);
+        bool any_dynamic = false;
+        for (uint32_t k = scan.offsets[p]; k < scan.offsets[p + 1] && !any_dynamic; ++k)
+            any_dynamic = is_dynamic[scan.index[k]] != 0;
+        if (any_dynamic && lowestHidden(p))
+            found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance, true);
         bool mover = found.moving;
         if (found.object)
         {
             if (reachesShare(tested, prm.free_space_fraction, verdict))
             {
+                if (!any_dynamic && lowestHidden(p))
+                    found.low =
+                        object.ground(scan, p, scan.cells[ObjectTest::lowestEntry(scan, p)], true);
                 mark(p, found.low);
                 mover = true;
             }
@@ -681,21 +781,6 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     };
     // Tested from its ground up, the pillar's ground is among what is tested: an entry on a
     // surface along the beams (alongBeams(), seen in the scan's own image) is not judged.
-    std::optional<FreeSpaceTest> unheld;  // the scan's own image when the test does not hold it
-    std::optional<Judge> own;
-    auto ownJudge = [&]() -> const Judge&
-    {
-        if (!own)
-        {
-            if (!self)
-            {
-                unheld.emplace(1);
-                unheld->add(pts, T, grid.imageLayout());
-            }
-            own = self ? Judge::of(scans[*self], *self) : Judge::of(unheld->scans().front(), 0);
-        }
-        return *own;
-    };
     auto groundUpVerdict = [&](uint32_t k)
     {
         const uint32_t i = scan.index[k];
@@ -705,7 +790,8 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     for (const std::size_t p : small)
     {
         if (!inOrNextToGone(unpackKey(scan.keys[p]))) continue;
-        auto found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance);
+        auto found =
+            object.entries(scan, p, pts, is_dynamic, tested, object.clearance, lowestHidden(p));
         bool share = false;
         if (!tested.empty())
             share = reachesShare(tested, prm.free_space_fraction, verdict);
