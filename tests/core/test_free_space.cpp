@@ -262,6 +262,26 @@ WithAndWithout classifyWithAndWithout(const PillarGrid& grid, const FreeSpaceTes
     return r;
 }
 
+/** Online with `prm`: each of `scans` inserted, then classified with the past only, without the
+ *  free-space test and with it (a test holding the scans before it). */
+WithAndWithout onlineWithAndWithout(const std::vector<Scan>& scans, const Params& prm)
+{
+    PillarGrid grid(GridGeometry(), prm);
+    FreeSpaceTest past(FreeSpaceTest::capacityFor(prm));
+    WithAndWithout r;
+    for (const Scan& s : scans)
+    {
+        grid.insertScan(s.view(), s.pose);
+        std::vector<uint8_t> dyn, dyn_map;
+        grid.classify(s.view(), dyn, s.pose, &past);
+        grid.classify(s.view(), dyn_map, s.pose);
+        r.with.add(s, dyn);
+        r.without.add(s, dyn_map);
+        past.add(s.view(), s.pose, kLayout);
+    }
+    return r;
+}
+
 }  // namespace
 
 TEST(FreeSpaceTest, AWalkerIsRemovedGroundWallAndPoleStay)
@@ -727,19 +747,7 @@ TEST(FreeSpaceTest, AVanDrivingAheadIsShownByItsConstantSpeedAlongTheBeams)
     Params prm = freeSpaceParams();
     prm.online = true;
     prm.p_empty_init = 0.5;  // kitti-online.ini's
-    PillarGrid grid(GridGeometry(), prm);
-    FreeSpaceTest past(FreeSpaceTest::capacityFor(prm));
-    Removed with, without;
-    for (const Scan& s : scans)
-    {
-        grid.insertScan(s.view(), s.pose);
-        std::vector<uint8_t> dyn, dyn_map;
-        grid.classify(s.view(), dyn, s.pose, &past);
-        grid.classify(s.view(), dyn_map, s.pose);
-        with.add(s, dyn);
-        without.add(s, dyn_map);
-        past.add(s.view(), s.pose, kLayout);
-    }
+    const auto [without, with] = onlineWithAndWithout(scans, prm);
     // Measured: the map alone removes 30 % of the van (the test as well, before this rule),
     // the test 68.9 % (every scan from the fourth, which has three scans of past).
     EXPECT_GT(with.n[kPerson], 1000u);
@@ -787,19 +795,7 @@ TEST(FreeSpaceTest, WhatStandsBehindABarrierIsTestedDownToItsLowestRing)
     prm.online = true;
     prm.p_empty_init = 0.5;  // kitti-online.ini's
     prm.free_space_fraction = 0.4;
-    PillarGrid grid(GridGeometry(), prm);
-    FreeSpaceTest past(FreeSpaceTest::capacityFor(prm));
-    Removed with, without;
-    for (const Scan& s : scans)
-    {
-        grid.insertScan(s.view(), s.pose);
-        std::vector<uint8_t> dyn, dyn_map;
-        grid.classify(s.view(), dyn, s.pose, &past);
-        grid.classify(s.view(), dyn_map, s.pose);
-        with.add(s, dyn);
-        without.add(s, dyn_map);
-        past.add(s.view(), s.pose, kLayout);
-    }
+    const auto [without, with] = onlineWithAndWithout(scans, prm);
     // Measured: the map alone removes none of the moving car, the test 79.6 % (66.6 % with its
     // lowest ring over the barrier taken for the ground; the first scan has no past).
     EXPECT_GT(with.n[kPerson], 2000u);
