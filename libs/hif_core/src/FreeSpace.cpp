@@ -106,13 +106,15 @@ Look look(const Judge& j, const ImageCell& cell, const RangeMargin& margin)
     float e = own;
     bool near = false;
     int best = std::numeric_limits<int>::max();
-    for (int dr = -1; dr <= 1; ++dr)
+    const int cols[3] = {c > 0 ? c - 1 : l.cols - 1, c, c + 1 < l.cols ? c + 1 : 0};
+    for (int dr = -1; dr <= 1 && !(near && std::isfinite(own)); ++dr)
     {
         const int rr = r + dr;
         if (rr < 0 || rr >= l.rows) continue;
         for (int dc = -1; dc <= 1; ++dc)
         {
-            const float f = j.at(rr, (c + dc + l.cols) % l.cols);
+            if (dr == 0 && dc == 0) continue;  // own: beyond the margin, or no return
+            const float f = j.at(rr, cols[dc + 1]);
             if (!std::isfinite(f)) continue;
             near = near || (f > d - m && f <= d + m);
             const int dist = dr * dr + dc * dc;
