@@ -166,6 +166,16 @@ std::optional<BeamOffset> nearestBeamOffset(const Judge& j, const ImageCell& cel
     return offsetOf(range, cell, margin);
 }
 
+/** The range of judge `j`'s return in cell (r, c), else the nearer of the cells beside it in
+ *  its row (a beam's returns fill every other column); +inf for none. */
+float columnReturn(const Judge& j, int r, int c)
+{
+    const int cols = j.layout->cols;
+    const float f = j.at(r, c);
+    if (std::isfinite(f)) return f;
+    return std::min(j.at(r, c + 1 < cols ? c + 1 : 0), j.at(r, c > 0 ? c - 1 : cols - 1));
+}
+
 /** Whether world point `p` lies on a surface that runs along the beams of scan `own` (the
  *  scan it was seen in), met at grazing incidence: in its column of `own`'s image, the nearest
  *  beam on one side (up to one and a half beam spacings away: three rows of half a spacing)
@@ -186,11 +196,7 @@ bool alongBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& m
         {
             const int r = cell->r + dir * k;
             if (r < 0 || r >= l.rows) break;
-            // The point's column, else the nearer return of the columns on each side.
-            float f = own.at(r, cell->c);
-            if (!std::isfinite(f))
-                f = std::min(own.at(r, (cell->c + 1) % l.cols),
-                             own.at(r, (cell->c + l.cols - 1) % l.cols));
+            const float f = columnReturn(own, r, cell->c);
             if (!std::isfinite(f)) continue;
             sides[dir > 0] = f > cell->d + m ? 1 : f < cell->d - m ? -1 : 0;
             break;
@@ -221,10 +227,7 @@ bool groundHidden(const Judge& own, const Eigen::Vector3d& p, const RangeMargin&
     {
         for (int r = row - 1; r >= std::max(0, row - kRows); --r)
         {
-            range = own.at(r, cell->c);
-            if (!std::isfinite(range))
-                range = std::min(own.at(r, (cell->c + 1) % l.cols),
-                                 own.at(r, (cell->c + l.cols - 1) % l.cols));
+            range = columnReturn(own, r, cell->c);
             if (std::isfinite(range)) return r;
         }
         return -1;
