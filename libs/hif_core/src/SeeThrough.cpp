@@ -22,6 +22,11 @@ void seeThroughPillar(Pillar& pil, const BeamGate& gate, const LogOddsModel& mod
     bool changed = false;
     for (const Interval& iv : pil.intervals)
     {
+        if (iv.logodds <= model.lmin)
+        {
+            pieces.push_back(iv);  // a miss leaves it at p_min: no need to ask
+            continue;
+        }
         const auto k = static_cast<std::size_t>(&iv - pil.intervals.data());
         gate.passedCells(iv.lo, iv.hi, gate.floorOrObject(pil.intervals.data(), k, iv.lo, iv.hi),
                          passed, gate.skyFor(iv.logodds));
