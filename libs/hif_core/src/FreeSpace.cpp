@@ -739,12 +739,11 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     };
     for (std::size_t p = 0; p < scan.pillarCount(); ++p)
     {
-        auto found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance);
         bool any_dynamic = false;
         for (uint32_t k = scan.offsets[p]; k < scan.offsets[p + 1] && !any_dynamic; ++k)
             any_dynamic = is_dynamic[scan.index[k]] != 0;
-        if (any_dynamic && lowestHidden(p))
-            found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance, true);
+        auto found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance,
+                                    any_dynamic && lowestHidden(p));
         bool mover = found.moving;
         if (found.object)
         {
