@@ -151,8 +151,8 @@ void PillarUpdater::update(Pillar& g, const Span* t, std::size_t nt, int32_t cei
                 emit(lo, hi, gi[i].logodds);  // Eq. 16: below b_base, unknown: keep
             else if (model.hhp && lo >= ceiling)
                 emit(lo, hi, gi[i].logodds);  // HHP: above the field of view, unknown: keep
-            else if (gate && gi[i].logodds <= model.lmin)
-                emit(lo, hi, gi[i].logodds);  // a miss leaves it at p_min: no need to ask
+            else if (gate && !model.missChanges(gi[i].logodds))
+                emit(lo, hi, gi[i].logodds);  // at p_min: a miss leaves it there
             else if (gate)
             {
                 // Eq. 13 where beams of the scan passed through; elsewhere the scan could not

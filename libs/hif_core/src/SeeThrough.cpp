@@ -22,9 +22,9 @@ void seeThroughPillar(Pillar& pil, const BeamGate& gate, const LogOddsModel& mod
     bool changed = false;
     for (const Interval& iv : pil.intervals)
     {
-        if (iv.logodds <= model.lmin)
+        if (!model.missChanges(iv.logodds))
         {
-            pieces.push_back(iv);  // a miss leaves it at p_min: no need to ask
+            pieces.push_back(iv);  // at p_min: a miss leaves it there
             continue;
         }
         const auto k = static_cast<std::size_t>(&iv - pil.intervals.data());

@@ -53,6 +53,9 @@ struct LogOddsModel
 
     [[nodiscard]] static LogOddsModel fromParams(const Params& p);
     [[nodiscard]] float clamp(float l) const { return l < lmin ? lmin : (l > lmax ? lmax : l); }
+    /** Whether a miss (Eq. 13, clipped by Eq. 17-18) changes log-odds `l`: not at p_min, so
+     *  where it does not, nobody needs to ask whether a beam passed. */
+    [[nodiscard]] bool missChanges(float l) const { return clamp(l + miss) != l; }
 };
 
 /** Heights (already as cells, sorted ascending) of one pillar in one scan merged into spans
