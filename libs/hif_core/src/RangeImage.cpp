@@ -18,9 +18,10 @@ namespace hif::detail
 namespace
 {
 /** Range-image cell (imageCell(), or -1 if none), range and tan(elevation) of points [0, n)
- *  of x/y/z. */
+ *  of x/y/z; with `by_col`, also the cell's index in the image stored column by column
+ *  (col * rows + row). */
 void imageCellsScalar(const RangeImageLayout& l, const float* x, const float* y, const float* z,
-                      std::size_t n, int32_t* cells, float* ranges, float* tans)
+                      std::size_t n, int32_t* cells, float* ranges, float* tans, int32_t* by_col)
 {
     for (std::size_t j = 0; j < n; ++j)
     {
@@ -30,6 +31,7 @@ void imageCellsScalar(const RangeImageLayout& l, const float* x, const float* y,
         const double rxy = std::sqrt(sx * sx + sy * sy);
         if (rxy == 0.0) continue;
         cells[j] = imageCell(l, pseudoAzimuth(sx, sy), sz / rxy);
+        if (by_col && cells[j] >= 0) by_col[j] = cells[j] % l.cols * l.rows + cells[j] / l.cols;
         ranges[j] = static_cast<float>(std::sqrt(rxy * rxy + sz * sz));
         tans[j] = static_cast<float>(sz / rxy);
     }
@@ -39,7 +41,8 @@ void imageCellsScalar(const RangeImageLayout& l, const float* x, const float* y,
 /** imageCellsScalar() four points at a time: the same operations, so the same bits. */
 __attribute__((target("avx"))) void imageCellsAvx(const RangeImageLayout& l, const float* x,
                                                   const float* y, const float* z, std::size_t n,
-                                                  int32_t* cells, float* ranges, float* tans)
+                                                  int32_t* cells, float* ranges, float* tans,
+                                                  int32_t* by_col)
 {
     const __m256d inf = _mm256_set1_pd(std::numeric_limits<double>::infinity());
     const __m256d zero = _mm256_setzero_pd();
@@ -48,7 +51,7 @@ __attribute__((target("avx"))) void imageCellsAvx(const RangeImageLayout& l, con
     const __m256d tan_res = _mm256_set1_pd(l.tan_res);
     const __m256d col_scale = _mm256_set1_pd(l.cols / 4.0);
     const __m256d last_col = _mm256_set1_pd(l.cols - 1), last_row = _mm256_set1_pd(l.rows - 1);
-    const __m256d cols = _mm256_set1_pd(l.cols);
+    const __m256d cols = _mm256_set1_pd(l.cols), rows = _mm256_set1_pd(l.rows);
     const __m256d none = _mm256_set1_pd(-1.0);
     const __m256d two = _mm256_set1_pd(2.0), four = _mm256_set1_pd(4.0);
     std::size_t j = 0;
@@ -83,37 +86,45 @@ __attribute__((target("avx"))) void imageCellsAvx(const RangeImageLayout& l, con
         const __m256d k = _mm256_add_pd(_mm256_mul_pd(row, cols), col);
         _mm_storeu_si128(reinterpret_cast<__m128i*>(cells + j),
                          _mm256_cvttpd_epi32(_mm256_blendv_pd(none, k, ok)));
+        if (by_col)
+        {
+            const __m256d kc = _mm256_add_pd(_mm256_mul_pd(col, rows), row);
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(by_col + j),
+                             _mm256_cvttpd_epi32(_mm256_blendv_pd(none, kc, ok)));
+        }
         const __m256d range =
             _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(rxy, rxy), _mm256_mul_pd(sz, sz)));
         _mm_storeu_ps(ranges + j, _mm256_cvtpd_ps(range));
         _mm_storeu_ps(tans + j, _mm256_cvtpd_ps(tan_el));
     }
-    imageCellsScalar(l, x + j, y + j, z + j, n - j, cells + j, ranges + j, tans + j);
+    imageCellsScalar(l, x + j, y + j, z + j, n - j, cells + j, ranges + j, tans + j,
+                     by_col ? by_col + j : nullptr);
 }
 #endif
 
 /** imageCellsScalar(), with AVX when the CPU has it. */
 void imageCells(const RangeImageLayout& l, const float* x, const float* y, const float* z,
-                std::size_t n, int32_t* cells, float* ranges, float* tans)
+                std::size_t n, int32_t* cells, float* ranges, float* tans, int32_t* by_col)
 {
 #if HIF_X86_AVX
     if (useAvx())
     {
-        imageCellsAvx(l, x, y, z, n, cells, ranges, tans);
+        imageCellsAvx(l, x, y, z, n, cells, ranges, tans, by_col);
         return;
     }
 #endif
-    imageCellsScalar(l, x, y, z, n, cells, ranges, tans);
+    imageCellsScalar(l, x, y, z, n, cells, ranges, tans, by_col);
 }
 }  // namespace
 
 namespace
 {
-/** The nearest return of `pts` in every cell of `img` (layout `l`): `keep(cell, range,
- *  tan_el)` keeps the nearer of the cell's value and the return; `none` where no return. */
+/** The nearest return of `pts` in every cell of `img` (layout `l`; row by row, or with
+ *  `by_column` column by column): `keep(cell, range, tan_el)` keeps the nearer of the cell's
+ *  value and the return; `none` where no return. */
 template <typename T, typename Keep>
 void fillImage(const RangeImageLayout& l, const PointsView& pts, std::vector<T>& img, T none,
-               Keep keep, std::vector<uint8_t>* blocks = nullptr)
+               Keep keep, std::vector<uint8_t>* blocks = nullptr, bool by_column = false)
 {
     // Blocks of the flattened image: one may end a row and start the next (at the seam of
     // the azimuth), which the sky test's "a return nearby" does not mind.
@@ -130,14 +141,17 @@ void fillImage(const RangeImageLayout& l, const PointsView& pts, std::vector<T>&
     alignas(64) int32_t cells[kBlock];
     alignas(64) float ranges[kBlock];
     alignas(64) float tans[kBlock];
+    alignas(64) int32_t stored[kBlock];  // by_column: where each cell is stored
+    int32_t* const at = by_column ? stored : cells;
     for (std::size_t b0 = 0; b0 < pts.size; b0 += kBlock)
     {
         const std::size_t nb = std::min(kBlock, pts.size - b0);
-        imageCells(l, pts.x + b0, pts.y + b0, pts.z + b0, nb, cells, ranges, tans);
+        imageCells(l, pts.x + b0, pts.y + b0, pts.z + b0, nb, cells, ranges, tans,
+                   by_column ? stored : nullptr);
         for (std::size_t j = 0; j < nb; ++j)
             if (cells[j] >= 0)
             {
-                keep(img[static_cast<std::size_t>(cells[j])], ranges[j], tans[j]);
+                keep(img[static_cast<std::size_t>(at[j])], ranges[j], tans[j]);
                 if (blocks) (*blocks)[static_cast<std::size_t>(cells[j]) / kBlockCols] = 1;
             }
     }
@@ -155,7 +169,7 @@ float buildReturnImage(const RangeImageLayout& l, const PointsView& pts,
             cell.keepNearer(r, tan_el);
             if (r < 655.34f) farthest = std::max(farthest, r);  // what a cell can hold
         },
-        &blocks);
+        &blocks, true);
     return farthest;
 }
 

@@ -33,14 +33,25 @@ inline double pseudoAzimuth(double x, double y)
     return x >= 0.0 ? (y >= 0.0 ? a : 4.0 + a) : 2.0 - a;
 }
 
-/** Cell of a range image laid out as `l` for (pseudo-azimuth, tan(elevation)), or -1 outside
- *  its rows. */
-inline int imageCell(const RangeImageLayout& l, double paz, double tan_el)
+/** Column of a range image laid out as `l` for a pseudo-azimuth. */
+inline int imageCol(const RangeImageLayout& l, double paz)
+{
+    return std::min(l.cols - 1, static_cast<int>(paz * (l.cols / 4.0)));
+}
+
+/** Row of a range image laid out as `l` for tan(elevation), or -1 outside its rows. */
+inline int imageRow(const RangeImageLayout& l, double tan_el)
 {
     if (!(tan_el >= l.tan_min && tan_el < l.tan_max)) return -1;
-    const int c = std::min(l.cols - 1, static_cast<int>(paz * (l.cols / 4.0)));
-    const int r = std::min(l.rows - 1, static_cast<int>((tan_el - l.tan_min) / l.tan_res));
-    return r * l.cols + c;
+    return std::min(l.rows - 1, static_cast<int>((tan_el - l.tan_min) / l.tan_res));
+}
+
+/** Cell of a range image laid out as `l` for (pseudo-azimuth, tan(elevation)), row by row
+ *  (row * cols + col), or -1 outside its rows. */
+inline int imageCell(const RangeImageLayout& l, double paz, double tan_el)
+{
+    const int r = imageRow(l, tan_el);
+    return r < 0 ? -1 : r * l.cols + imageCol(l, paz);
 }
 
 /** The range-adaptive interval widths (Params::beam_spacing_deg) of a pillar at horizontal
@@ -187,7 +198,6 @@ struct BeamGate
     {
         Axis a;
         if (!axisOf(lo, hi, a)) return false;
-        const RangeImageLayout& l = *layout;
         bool any = false;
         int run_top = -1;  // the top row of the run of rows that passed, walking down
         auto endRun = [&](int bottom)
@@ -198,24 +208,20 @@ struct BeamGate
             run_top = -1;
         };
         // From the top row down: beams above what stands in the pillar pass first; until one
-        // has, every column's beam counts for `any`, then only the centre's is read (each row
-        // is a cache miss). Distances compared squared: no square root per row.
+        // has, every column's beam counts for `any`, then only the centre's is read.
         int row = a.row1;
         for (; row >= a.row0 && !any; --row)
         {
-            const BeamReturn* line = rowOf(row);
-            const double dist2 = a.dist2(l, row);
             for (int k = 0; k < a.ncols && !any; ++k)
-                any = beamOf(line[a.cols[k]], dist2) == Beam::Passed;
+                any = beamOf(cellAt(row, a.cols[k]), a, row) == Beam::Passed;
             if (any) run_top = row;
         }
         if (!any) return false;
-        // The rest of the centre's column, down the image a row (l.cols cells) at a time.
-        const BeamReturn* cell = rowOf(row + 1) + a.cols[a.ncols / 2];
+        // The rest of the centre's column, down the image (a column is contiguous).
+        const BeamReturn* column = columnOf(a.cols[a.ncols / 2]);
         for (; row >= a.row0; --row)
         {
-            cell -= l.cols;
-            if (beamOf(*cell, a.dist2(l, row)) == Beam::Passed)
+            if (beamOf(column[row], a, row) == Beam::Passed)
             {
                 if (run_top < 0) run_top = row;
             }
@@ -260,12 +266,10 @@ struct BeamGate
         {
             const bool own = row >= a.row0 && row <= a.row1;
             if (core_passed && !own) break;  // all that is left to look for is a veto
-            const double dist2 = a.dist2(l, row);
-            const BeamReturn* line = rowOf(row);
             for (int k = 0; k < a.ncols; ++k)
             {
-                const BeamReturn ret = returnAt(line, row, a.cols[k], a, sky);
-                const Beam beam = beamOf(ret, dist2);
+                const BeamReturn ret = returnAt(row, a.cols[k], a, sky);
+                const Beam beam = beamOf(ret, a, row);
                 if (beam == Beam::None) continue;  // no return: no evidence
                 if (beam == Beam::Passed)
                 {
@@ -410,16 +414,16 @@ private:
         a.hx = p.x() / a.d;
         a.hy = p.y() / a.d;
         a.horizon_tan = up.z() != 0.0 ? -(up.x() * a.hx + up.y() * a.hy) / up.z() : 0.0;
-        const double paz = pseudoAzimuth(p.x(), p.y());
-        const int k0 = imageCell(l, paz, std::max(p.z() / a.d, l.tan_min));
-        const int k1 = imageCell(l, paz, std::min(hi_z / a.d, l.tan_max - 1e-12));
-        if (k0 < 0 || k1 < 0) return false;
-        const int col = k0 % l.cols;
-        a.row0 = k0 / l.cols;
-        a.row1 = k1 / l.cols;
+        a.row0 = imageRow(l, std::max(p.z() / a.d, l.tan_min));
+        a.row1 = imageRow(l, std::min(hi_z / a.d, l.tan_max - 1e-12));
+        if (a.row0 < 0 || a.row1 < 0) return false;
+        const int col = imageCol(l, pseudoAzimuth(p.x(), p.y()));
         a.ncols = 0;
         for (int dc = -half_cols; dc <= half_cols; ++dc)
-            a.cols[a.ncols++] = (col + dc + l.cols) % l.cols;
+        {
+            const int c = col + dc;  // wrapped around the azimuth
+            a.cols[a.ncols++] = c < 0 ? c + l.cols : (c >= l.cols ? c - l.cols : c);
+        }
         return true;
     }
 
@@ -443,12 +447,10 @@ private:
                 if (anyNear(row, a)) return Crossing::Vetoed;
                 continue;
             }
-            const double dist2 = a.dist2(*layout, row);
-            const BeamReturn* line = rowOf(row);
             for (int k = 0; k < a.ncols; ++k)
             {
-                const BeamReturn ret = returnAt(line, row, a.cols[k], a, sky);
-                const Beam beam = beamOf(ret, dist2);
+                const BeamReturn ret = returnAt(row, a.cols[k], a, sky);
+                const Beam beam = beamOf(ret, a, row);
                 if (beam == Beam::Passed)
                 {
                     const Span c = crossedCells(ret.tan(), a);
@@ -474,10 +476,8 @@ private:
         {
             for (int row = std::max(0, from); row <= std::min(l.rows - 1, to); ++row)
             {
-                const double dist2 = a.dist2(l, row);
-                const BeamReturn* line = rowOf(row);
                 for (int k = 0; k < a.ncols; ++k)
-                    if (beamOf(returnAt(line, row, a.cols[k], a, sky), dist2) == Beam::Passed)
+                    if (beamOf(returnAt(row, a.cols[k], a, sky), a, row) == Beam::Passed)
                         return true;
             }
             return false;
@@ -485,18 +485,18 @@ private:
         return anyPass(a.row1 + 1, a.row1 + extra) && anyPass(a.row0 - extra, a.row0 - 1);
     }
 
-    /** The return in cell (row, col) of `line`; with `sky`, a cell without one whose row holds
-     *  a return within a few columns (a ring of the sensor fired there) and looks above the
-     *  horizon reads as a beam that passed far, with that ring's elevation. */
-    [[nodiscard]] BeamReturn returnAt(const BeamReturn* line, int row, int col, const Axis& a,
-                                      bool sky) const
+    /** The return in cell (row, col); with `sky`, a cell without one whose row holds a return
+     *  within a few columns (a ring of the sensor fired there) and looks above the horizon
+     *  reads as a beam that passed far, with that ring's elevation. */
+    [[nodiscard]] BeamReturn returnAt(int row, int col, const Axis& a, bool sky) const
     {
         // A ring's beam that returned nothing: the row holds a return within a few columns.
-        const BeamReturn& ret = line[col];
+        const BeamReturn& ret = cellAt(row, col);
         if (!sky || ret.range_cm != BeamReturn::kNone) return ret;
         const RangeImageLayout& l = *layout;
         if (l.tan_min + (row + 0.5) * l.tan_res <= a.horizon_tan) return ret;  // below it
-        // No return in this block of cells nor the next ones: open sky, or no ring here.
+        // No return in this block of cells nor the next ones: open sky, or no ring here
+        // (blocks run along the rows, buildReturnImage()).
         const std::size_t cell = static_cast<std::size_t>(row) * l.cols + col;
         const std::size_t b = cell / kBlockCols, last = l.cells() / kBlockCols;
         if (!returned_blocks[b] && !returned_blocks[b < last ? b + 1 : 0] &&
@@ -504,9 +504,9 @@ private:
             return ret;
         for (int dc = 1; dc <= kBlockCols; ++dc)
             for (const int c : {(col + dc) % l.cols, (col - dc + l.cols) % l.cols})
-                if (line[c].range_cm != BeamReturn::kNone)
+                if (cellAt(row, c).range_cm != BeamReturn::kNone)
                 {
-                    BeamReturn far = line[c];
+                    BeamReturn far = cellAt(row, c);
                     far.range_cm = BeamReturn::kNone - 1;  // 655.34 m: beyond any pillar
                     return far;
                 }
@@ -529,7 +529,7 @@ private:
     /** The return in cell (row, col), placed, or none. */
     [[nodiscard]] Found at(int row, int col) const
     {
-        const BeamReturn& ret = rowOf(row)[col];
+        const BeamReturn& ret = cellAt(row, col);
         if (ret.range_cm == BeamReturn::kNone) return {};
         // The column's azimuth from its pseudo-azimuth (pseudoAzimuth() inverted).
         const double paz = (col + 0.5) * (4.0 / layout->cols);
@@ -571,7 +571,7 @@ private:
     {
         const int rows = std::max(1, static_cast<int>(std::ceil(bridge_tan / layout->tan_res)));
         for (int r = std::min(from.row - rows - 1, layout->rows - 1); r >= 0; --r)
-            if (rowOf(r)[from.col].range_cm != BeamReturn::kNone) return true;
+            if (cellAt(r, from.col).range_cm != BeamReturn::kNone) return true;
         return false;
     }
     /** Whether the returns from `from` down, one beam after the other, each lie nearer than the
@@ -580,7 +580,7 @@ private:
     [[nodiscard]] bool runDownIsLevel(Found from, double slope_tan, double step) const
     {
         const auto cell = [&](const Found& f)
-        { return static_cast<std::size_t>(f.row) * layout->cols + f.col; };
+        { return static_cast<std::size_t>(f.col) * layout->rows + f.row; };
         constexpr int kKept = 64;  // cells remembered per walk (the rest are walked again)
         std::size_t walked[kKept];
         int n = 0;
@@ -641,24 +641,26 @@ private:
         return d * std::sqrt(1.0 + t_up * t_up) > farthest_return;
     }
 
-    [[nodiscard]] const BeamReturn* rowOf(int row) const
+    /** The image is stored column by column (buildReturnImage()): the walks along a
+     *  pillar's axis read one column down, a cache line holding 16 rows. */
+    [[nodiscard]] const BeamReturn* columnOf(int col) const
     {
-        return image + static_cast<std::size_t>(row) * layout->cols;
+        return image + static_cast<std::size_t>(col) * layout->rows;
     }
+    [[nodiscard]] const BeamReturn& cellAt(int row, int col) const { return columnOf(col)[row]; }
 
     /** Whether a return of `row` lies within the margin of the pillar. */
     [[nodiscard]] bool anyNear(int row, const Axis& a) const
     {
-        const double dist2 = a.dist2(*layout, row);
-        const BeamReturn* line = rowOf(row);
         for (int k = 0; k < a.ncols; ++k)
-            if (beamOf(line[a.cols[k]], dist2) == Beam::Near) return true;
+            if (beamOf(cellAt(row, a.cols[k]), a, row) == Beam::Near) return true;
         return false;
     }
 
-    /** What a return says of the pillar, `dist2` the squared distance to its axis along the
-     *  return's row: nothing (no return), passed (farther than the pillar by more than the
-     *  margin), near (within the margin of it: something is there), or in front of it. */
+    /** What the return of a cell of `row` says of the pillar (compared with the distance to
+     *  its axis along the row, squared: no square root): nothing (no return), passed (farther
+     *  than the pillar by more than the margin), near (within the margin of it: something is
+     *  there), or in front of it. */
     enum class Beam : uint8_t
     {
         None,
@@ -666,10 +668,11 @@ private:
         Near,
         Front
     };
-    [[nodiscard]] Beam beamOf(const BeamReturn& ret, double dist2) const
+    [[nodiscard]] Beam beamOf(const BeamReturn& ret, const Axis& a, int row) const
     {
+        if (ret.range_cm == BeamReturn::kNone) return Beam::None;
         const double r = ret.range();
-        if (!std::isfinite(r)) return Beam::None;
+        const double dist2 = a.dist2(*layout, row);
         const double beyond = r - margin, near = r + margin;
         if (beyond > 0.0 && beyond * beyond > dist2) return Beam::Passed;
         return near * near > dist2 ? Beam::Near : Beam::Front;
@@ -729,9 +732,11 @@ inline double pillarReach(double size, double dx, double dy)
     return m > 0.0 ? 0.5 * size * std::sqrt(dx * dx + dy * dy) / m : 0.5 * size;
 }
 
-/** Fills `img` (layout `l`, row-major) with the nearest return of `points` (sensor frame) in
- *  every cell, BeamReturn{} (no return) where none falls, and `blocks` with a byte per block
- *  of kBlockCols cells (of the flattened image): 1 where any return fell in it. Returns the
+/** Fills `img` (layout `l`, stored column by column: cell (row, col) at col * rows + row, so
+ *  that BeamGate's walks down a column stay in a few cache lines) with the nearest return of
+ *  `points` (sensor frame) in every cell, BeamReturn{} (no return) where none falls, and
+ *  `blocks` with a byte per block of kBlockCols cells of the image flattened row by row
+ *  (row * cols + col): 1 where any return fell in it. Returns the
  *  range of the scan's farthest return in the image, metres (0 for none).
  *  Four points at a time with AVX when useAvx() (the same bits as one at a time). */
 float buildReturnImage(const RangeImageLayout& l, const PointsView& points,
