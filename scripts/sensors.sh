@@ -10,12 +10,21 @@
 #   bash scripts/sensors.sh -c share/hif/config/kitti-paper.ini  # extra hif-clean flags
 #
 # Environment: HIF_SENSORS (default: every sensor), HIF_SENSORS_SCENES (default "street walkers
-# cyclists traffic"), HIF_SENSORS_SCANS (default 10), HIF_SENSORS_SEED (default 1).
-# Work files go to ${HIF_SENSORS_DIR:-build/sensors}/; clips are generated once and reused.
+# cyclists traffic"), HIF_SENSORS_SCANS (default 10), HIF_SENSORS_SEED (default 1),
+# HIF_SENSORS_FOLIAGE (1: hif-synthetic-kitti --foliage, porous canopies, bushes and hedges).
+# Work files go to ${HIF_SENSORS_DIR:-build/sensors, build/sensors-foliage with foliage}/; clips
+# are generated once and reused.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${HIF_BUILD_DIR:-build}/apps
-ROOT=${HIF_SENSORS_DIR:-build/sensors}
+FOLIAGE=()
+SUFFIX=""
+case "${HIF_SENSORS_FOLIAGE:-0}" in
+  0) ;;
+  1) FOLIAGE=(--foliage); SUFFIX=-foliage ;;
+  *) echo "[sensors] HIF_SENSORS_FOLIAGE=$HIF_SENSORS_FOLIAGE is not 0 or 1" >&2; exit 1;;
+esac
+ROOT=${HIF_SENSORS_DIR:-build/sensors$SUFFIX}
 SENSORS=${HIF_SENSORS:-hdl-64e hdl-32e vlp-16 os1-128 mid-70}
 SCENES=${HIF_SENSORS_SCENES:-street walkers cyclists traffic}
 SCANS=${HIF_SENSORS_SCANS:-10}
@@ -30,7 +39,7 @@ for sensor in $SENSORS; do
     seq=$ROOT/clips/${sensor}_$scene
     if [ ! -f "$seq/times.txt" ]; then
       "$BIN/hif-synthetic-kitti" -o "$seq" --scene "$scene" --sensor "$sensor" --seed "$SEED" \
-        -n "$SCANS" --overwrite > /dev/null 2>&1
+        -n "$SCANS" "${FOLIAGE[@]}" --overwrite > /dev/null 2>&1
     fi
     out=$ROOT/runs/${sensor}_$scene
     "$BIN/hif-clean" -i "$seq" -o "$out" -q --overwrite --no-png "$@" > "$out.log" 2>&1 \

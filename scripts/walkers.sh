@@ -10,17 +10,27 @@
 #   bash scripts/walkers.sh -c share/hif/config/kitti-paper.ini    # extra hif-clean flags
 #   HIF_WALKERS_SCENE=cyclists bash scripts/walkers.sh   # cyclists at 3 to 6 m/s instead
 #   HIF_WALKERS_SCENE=radial bash scripts/walkers.sh     # people walking along the line of sight
+#   HIF_WALKERS_FOLIAGE=1 bash scripts/walkers.sh        # vegetation beams enter (--foliage)
 #
 # Environment: HIF_WALKERS_SCENE (walkers, the default, radial or cyclists), HIF_WALKERS_SEEDS
 # (default "1 2 3"), HIF_WALKERS_SPEEDS (default "0 1 3 5"), HIF_WALKERS_SCANS (default 10),
-# HIF_WALKERS_MODES (default "offline online").
-# Work files go to ${HIF_WALKERS_DIR:-build/<scene>}/; clips are generated once and reused.
+# HIF_WALKERS_MODES (default "offline online"), HIF_WALKERS_FOLIAGE (1: hif-synthetic-kitti
+# --foliage, porous canopies, bushes and hedges; the same people either way).
+# Work files go to ${HIF_WALKERS_DIR:-build/<scene>, build/<scene>-foliage with foliage}/; clips
+# are generated once and reused.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${HIF_BUILD_DIR:-build}/apps
 SCENE=${HIF_WALKERS_SCENE:-walkers}
 case "$SCENE" in walkers|radial|cyclists) ;; *) echo "[walkers] HIF_WALKERS_SCENE=$SCENE is not walkers, radial or cyclists" >&2; exit 1;; esac
-ROOT=${HIF_WALKERS_DIR:-build/$SCENE}
+FOLIAGE=()
+SUFFIX=""
+case "${HIF_WALKERS_FOLIAGE:-0}" in
+  0) ;;
+  1) FOLIAGE=(--foliage); SUFFIX=-foliage ;;
+  *) echo "[walkers] HIF_WALKERS_FOLIAGE=$HIF_WALKERS_FOLIAGE is not 0 or 1" >&2; exit 1;;
+esac
+ROOT=${HIF_WALKERS_DIR:-build/$SCENE$SUFFIX}
 SEEDS=${HIF_WALKERS_SEEDS:-1 2 3}
 SPEEDS=${HIF_WALKERS_SPEEDS:-0 1 3 5}
 SCANS=${HIF_WALKERS_SCANS:-10}
@@ -39,7 +49,7 @@ for mode in $MODES; do
       seq=$ROOT/clips/$clip
       if [ ! -f "$seq/scans.rawlog" ]; then
         "$BIN/hif-synthetic-kitti" -o "$seq" --scene "$SCENE" --ego-speed "$speed" --seed "$seed" \
-          -n "$SCANS" --overwrite > /dev/null 2>&1
+          -n "$SCANS" "${FOLIAGE[@]}" --overwrite > /dev/null 2>&1
         "$BIN/kitti2rawlog" -i "$seq" -o "$seq/scans.rawlog" --overwrite > /dev/null 2>&1
       fi
       flag=""; [ "$mode" = online ] && flag=--online
@@ -55,7 +65,7 @@ for mode in $MODES; do
       done
     done
   done
-  echo "[walkers] $SCENE, $mode: $(echo $SPEEDS | wc -w) sensor speeds x $(echo $SEEDS | wc -w) seeds, $SCANS scans each"
+  echo "[walkers] $SCENE$SUFFIX, $mode: $(echo $SPEEDS | wc -w) sensor speeds x $(echo $SEEDS | wc -w) seeds, $SCANS scans each"
   "$BIN/hif-eval" --labels "$all/labels" --predictions "$all/predictions" --scans "$all/velodyne" \
     --ego-radius 0 --json "$all/scores.json" -q
 done

@@ -62,6 +62,13 @@ struct Cli
                                         "hdl-64e",
                                         "name",
                                         cmd};
+    TCLAP::SwitchArg foliage{
+        "", "foliage",
+        "Porous vegetation: the trees' canopies, and bushes and hedges along the sidewalks, are "
+        "leaves a beam enters, returning from a leaf at a random depth (a mean of 0.3 to 1 m) or "
+        "passing through; the same beam a scan later meets another leaf. Without it, vegetation "
+        "is solid; the rest of the scene is the same either way",
+        cmd};
     TCLAP::SwitchArg overwrite{"", "overwrite", "Replace an existing sequence folder", cmd};
 };
 
@@ -75,6 +82,7 @@ int run(Cli& cli)
     if (cli.ego_speed.isSet()) o.ego_speed = cli.ego_speed.getValue();
     o.groups = cli.groups.getValue();
     o.sensor = cli.sensor.getValue();
+    o.foliage = cli.foliage.getValue();
     o.overwrite = cli.overwrite.getValue();
     hif::jobs::SyntheticKitti(o).run(std::cout);
     return 0;

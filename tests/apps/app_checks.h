@@ -107,7 +107,8 @@ inline std::size_t plyVertexCount(const std::string& file)
 }
 
 /** A synthetic clip of `scene` (10 scans), converted to a rawlog in `seq`. */
-inline void makeClip(const std::string& seq, const std::string& scene, double speed, long long seed)
+inline void makeClip(const std::string& seq, const std::string& scene, double speed, long long seed,
+                     bool foliage = false)
 {
     auto r = synthesize(seq, 10,
                         [&](hif::jobs::SyntheticKittiOptions& o)
@@ -115,6 +116,7 @@ inline void makeClip(const std::string& seq, const std::string& scene, double sp
                             o.scene = scene;
                             o.ego_speed = speed;
                             o.seed = seed;
+                            o.foliage = foliage;
                         });
     ASSERT_EQ(r.code, 0) << r.output;
     r = toRawlog(seq, seq + "/scans.rawlog");

@@ -98,7 +98,13 @@ SyntheticKittiResult SyntheticKitti::run(std::ostream& log) const
     const double length = ego_speed * kScanPeriod * double(n);
     const double duration = kScanPeriod * double(n);
     const int groups = static_cast<int>(o.groups);
-    const Scene scene = kind.make(rng, length, duration, ego_speed, groups);
+    Scene scene = kind.make(rng, length, duration, ego_speed, groups);
+    if (o.foliage)
+    {
+        // A generator of its own: the scene and its movers are those of the clip without.
+        std::mt19937 leaves(seed ^ 0x1eafU);
+        addFoliage(scene, leaves, length);
+    }
     std::normal_distribution<double> noise(0.0, 0.01);
 
     // KITTI's LiDAR-to-camera calibration, rounded: camera x = -y, y = -z, z = x.

@@ -7,15 +7,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace synth
 {
 namespace
 {
-void hitBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Box& b, uint32_t label,
-            Hit& h)
+/** Where the ray from o along d is inside the box, within [0, t_max]: [t0, t1]; false if nowhere.
+ */
+bool boxSpan(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Box& b, double t_max,
+             double& t0, double& t1)
 {
-    double t0 = 0, t1 = h.t;
+    t0 = 0;
+    t1 = t_max;
     for (int k = 0; k < 3; ++k)
     {
         const double inv = 1.0 / d[k];
@@ -23,9 +27,60 @@ void hitBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Box& b, ui
         if (a > c) std::swap(a, c);
         t0 = std::max(t0, a);
         t1 = std::min(t1, c);
-        if (t0 > t1) return;
+        if (t0 > t1) return false;
     }
-    if (t0 > 1e-6 && t0 < h.t) h = {t0, label};
+    return true;
+}
+
+void hitBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Box& b, uint32_t label,
+            Hit& h)
+{
+    double t0 = 0, t1 = 0;
+    if (boxSpan(o, d, b, h.t, t0, t1) && t0 > 1e-6 && t0 < h.t) h = {t0, label};
+}
+
+/** Where the ray from o along unit d is inside the sphere: [t0, t1] (t0 may be negative). */
+bool sphereSpan(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Sphere& s, double& t0,
+                double& t1)
+{
+    const Eigen::Vector3d oc = o - s.c;
+    const double b = oc.dot(d);
+    const double disc = b * b - (oc.squaredNorm() - s.r * s.r);
+    if (disc < 0) return false;
+    t0 = -b - std::sqrt(disc);
+    t1 = -b + std::sqrt(disc);
+    return true;
+}
+
+/** SplitMix64's finalizer: a well-mixed 64-bit value from any. */
+uint64_t mix(uint64_t z)
+{
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+
+/** A depth in leaves of mean `free_path`, the same for the same ray, time, volume and seed. */
+double leafDepth(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t, std::size_t volume,
+                 uint64_t seed, double free_path)
+{
+    uint64_t h = mix(seed ^ (volume * 0x9e3779b97f4a7c15ULL));
+    for (const double v : {o.x(), o.y(), o.z(), d.x(), d.y(), d.z(), t})
+    {
+        uint64_t bits = 0;
+        std::memcpy(&bits, &v, sizeof bits);
+        h = mix(h ^ bits);
+    }
+    const double u = double(h >> 11) * 0x1.0p-53;  // [0, 1)
+    return -free_path * std::log1p(-u);
+}
+
+/** A beam's return from the leaves of [t0, t1] when it lies in front of h. */
+void hitLeaves(double t0, double t1, double depth, Hit& h)
+{
+    t0 = std::max(t0, 0.0);
+    const double t = t0 + depth;
+    if (t1 > t0 && t < t1 && t > 1e-6 && t < h.t) h = {t, kVegetation};
 }
 
 /** A box of half-extents `half` (along u, v = z x u, and z) centred at `c`, u horizontal. */
@@ -194,6 +249,22 @@ Hit Scene::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t_now
     for (const Box& b : boxes) hitBox(o, d, b, b.label, h);
     for (const Cylinder& c : cylinders) hitCylinder(o, d, c, h);
     for (const Sphere& s : spheres) hitSphere(o, d, s, h);
+    for (std::size_t k = 0; k < foliage_boxes.size(); ++k)
+    {
+        const FoliageBox& f = foliage_boxes[k];
+        double t0 = 0, t1 = 0;
+        if (boxSpan(o, d, f.box, h.t, t0, t1))
+            hitLeaves(t0, t1, leafDepth(o, d, t_now, k, foliage_seed, f.free_path), h);
+    }
+    for (std::size_t k = 0; k < foliage_spheres.size(); ++k)
+    {
+        const FoliageSphere& f = foliage_spheres[k];
+        double t0 = 0, t1 = 0;
+        if (sphereSpan(o, d, f.sphere, t0, t1) && t0 < h.t)
+            hitLeaves(t0, t1,
+                      leafDepth(o, d, t_now, foliage_boxes.size() + k, foliage_seed, f.free_path),
+                      h);
+    }
     instance = 0;
     for (const Mover& m : movers)
     {
@@ -208,6 +279,50 @@ Hit Scene::cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t_now
              !(h.label == kMovingCar || h.label == kMovingPerson || h.label == kMovingBicyclist))
         instance = 0;
     return h;
+}
+
+void addFoliage(Scene& s, std::mt19937& rng, double length)
+{
+    // Leaf area densities of 1-2 m2/m3 (urban trees) to 6-7 (a trimmed hedge), half of it facing
+    // a beam: a free path of about 1 m in a canopy, 0.4 m in a bush, 0.3 m in a hedge.
+    constexpr double kCanopy = 1.0, kBush = 0.4, kHedge = 0.3;
+    std::uniform_real_distribution<double> u(0, 1);
+    s.foliage_seed = (uint64_t(rng()) << 32) | rng();
+    std::vector<Sphere> solid;
+    for (const Sphere& c : s.spheres)
+        if (c.label == kVegetation)
+            s.foliage_spheres.push_back({c, kCanopy});
+        else
+            solid.push_back(c);
+    s.spheres = std::move(solid);
+    auto nearTrunk = [&](double x, double y, double r)
+    {
+        for (const Cylinder& c : s.cylinders)
+            if (c.label == kTrunk && std::hypot(c.cx - x, c.cy - y) < c.r + r + 0.1) return true;
+        return false;
+    };
+    for (int side : {-1, 1})
+    {
+        // Bushes 0.9-1.3 m tall along the sidewalk's outer edge, between the trees.
+        for (double x = -20 + 4 * u(rng); x < length + 20; x += 2.5 + 5 * u(rng))
+        {
+            const double r = 0.6 + 0.3 * u(rng), y = side * (9.2 + 1.2 * u(rng));
+            if (nearTrunk(x, y, r)) continue;
+            s.foliage_spheres.push_back(
+                {{Eigen::Vector3d(x, y, groundZ(x) + 0.3 + 0.1 * u(rng)), r, kVegetation}, kBush});
+        }
+        // Hedges 1-1.8 m tall and about 1 m thick in front of the buildings, with gaps.
+        for (double x = -30 + 5 * u(rng); x < length + 30;)
+        {
+            const double w = 4 + 6 * u(rng), h = 1.0 + 0.8 * u(rng), y0 = 11.0 + 0.3 * u(rng);
+            const double y_near = side * y0, y_far = side * (y0 + 0.8 + 0.4 * u(rng));
+            s.foliage_boxes.push_back(
+                {{Eigen::Vector3d(x, std::min(y_near, y_far), groundZ(x) - 0.2),
+                  Eigen::Vector3d(x + w, std::max(y_near, y_far), groundZ(x + w) + h), kVegetation},
+                 kHedge});
+            x += w + 2 + 4 * u(rng);
+        }
+    }
 }
 
 Scene streetScene(std::mt19937& rng, double length)

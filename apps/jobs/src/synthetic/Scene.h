@@ -41,6 +41,21 @@ struct Sphere
     uint32_t label;
 };
 
+/** Leaves in a box (a hedge) or a sphere (a tree's canopy, a bush): a beam that enters returns
+ *  from a leaf at a depth drawn from an exponential distribution whose mean is the volume's
+ *  `free_path` (metres: the inverse of the leaves' projected area per cubic metre), or passes
+ *  through when that depth lies beyond the volume. */
+struct FoliageBox
+{
+    Box box;
+    double free_path;
+};
+struct FoliageSphere
+{
+    Sphere sphere;
+    double free_path;
+};
+
 struct Hit
 {
     double t = std::numeric_limits<double>::infinity();
@@ -76,12 +91,23 @@ struct Scene
     std::vector<Cylinder> cylinders;
     std::vector<Sphere> spheres;
     std::vector<Mover> movers;
+    std::vector<FoliageBox> foliage_boxes;  ///< empty unless addFoliage()
+    std::vector<FoliageSphere> foliage_spheres;
+    uint64_t foliage_seed = 0;  ///< with the ray and the time, draws each beam's depth in leaves
 
     /** First hit of the ray from o along unit d (within max_range) at time t, with the
      *  instance id of the mover hit (0 for static things). Label 0: no return. */
     Hit cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t, double max_range,
              uint32_t& instance) const;
 };
+
+/** Makes the street's vegetation porous, as real foliage is to a LiDAR: the trees' canopies
+ *  become leaves beams enter (free path 1 m) and bushes (0.4 m) and hedges (0.3 m) line the
+ *  sidewalks, between the trees and in front of the buildings. Each beam's depth in the leaves is
+ *  drawn from the ray and the time, so the same beam a scan later (leaves move in the wind, the
+ *  sensor moves) returns from another leaf or passes through. Draws from `rng` only: the rest of
+ *  the scene (and its movers) is the same with and without foliage. */
+void addFoliage(Scene& s, std::mt19937& rng, double length);
 
 /** The street of the default scene, `length` metres long (plus margins): buildings, trees and
  *  parked cars on both sides, four cars that drive and three people (boxes) that walk. */

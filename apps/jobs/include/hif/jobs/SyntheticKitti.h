@@ -27,7 +27,8 @@ struct SyntheticKittiOptions
         ego_speed;         ///< --ego-speed, m/s (default: 8 street, 12 traffic, 3 the others)
     long long groups = 6;  ///< --groups (walkers, radial, cyclists, traffic)
     std::string sensor = "hdl-64e";  ///< --sensor
-    bool overwrite = false;          ///< --overwrite
+    bool foliage = false;    ///< --foliage: canopies, bushes and hedges that beams enter and pass
+    bool overwrite = false;  ///< --overwrite
     bool show_progress = true;
 };
 
