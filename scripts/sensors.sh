@@ -17,13 +17,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${HIF_BUILD_DIR:-build}/apps
-FOLIAGE=()
-SUFFIX=""
-case "${HIF_SENSORS_FOLIAGE:-0}" in
-  0) ;;
-  1) FOLIAGE=(--foliage); SUFFIX=-foliage ;;
-  *) echo "[sensors] HIF_SENSORS_FOLIAGE=$HIF_SENSORS_FOLIAGE is not 0 or 1" >&2; exit 1;;
-esac
+source scripts/foliage-switch.sh
+foliage_switch HIF_SENSORS_FOLIAGE sensors
 ROOT=${HIF_SENSORS_DIR:-build/sensors$SUFFIX}
 SENSORS=${HIF_SENSORS:-hdl-64e hdl-32e vlp-16 os1-128 mid-70}
 SCENES=${HIF_SENSORS_SCENES:-street walkers cyclists traffic}

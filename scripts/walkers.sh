@@ -23,13 +23,8 @@ cd "$(dirname "$0")/.."
 BIN=${HIF_BUILD_DIR:-build}/apps
 SCENE=${HIF_WALKERS_SCENE:-walkers}
 case "$SCENE" in walkers|radial|cyclists) ;; *) echo "[walkers] HIF_WALKERS_SCENE=$SCENE is not walkers, radial or cyclists" >&2; exit 1;; esac
-FOLIAGE=()
-SUFFIX=""
-case "${HIF_WALKERS_FOLIAGE:-0}" in
-  0) ;;
-  1) FOLIAGE=(--foliage); SUFFIX=-foliage ;;
-  *) echo "[walkers] HIF_WALKERS_FOLIAGE=$HIF_WALKERS_FOLIAGE is not 0 or 1" >&2; exit 1;;
-esac
+source scripts/foliage-switch.sh
+foliage_switch HIF_WALKERS_FOLIAGE walkers
 ROOT=${HIF_WALKERS_DIR:-build/$SCENE$SUFFIX}
 SEEDS=${HIF_WALKERS_SEEDS:-1 2 3}
 SPEEDS=${HIF_WALKERS_SPEEDS:-0 1 3 5}
