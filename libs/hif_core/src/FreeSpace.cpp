@@ -498,6 +498,13 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             }
             return seen[j] == Seen::In ? &cells[j] : nullptr;
         };
+        // The first judge of each side is read first: both of their cells are fetched now,
+        // so that the second read does not wait for memory after the first.
+        if (self_pos > 0)
+            if (const ImageCell* c = cellIn(0)) judges[0].image->prefetch(c->r, c->c);
+        if (judges.size() > self_pos)
+            if (const ImageCell* c = cellIn(judges.size() - 1))
+                judges.back().image->prefetch(c->r, c->c);
         bool judged = false;
         // Whether a beam that returned `offset` from the point (within the margin `m` there)
         // shows a steady drift's full size (see `steady` below): beyond the margin's share

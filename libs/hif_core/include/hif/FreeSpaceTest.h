@@ -63,6 +63,15 @@ public:
                                   c / kBlockCols] +
                           c % kBlockCols];
         }
+        /** Asks the CPU to fetch the cell at (row, col) ahead of at(), which must lie in the
+         *  image (a hint: no effect on any result). */
+        void prefetch(int row, int col) const
+        {
+            const auto c = static_cast<uint32_t>(col);
+            __builtin_prefetch(
+                &cells_[blocks_[static_cast<std::size_t>(row) * blocks_per_row_ + c / kBlockCols] +
+                        c % kBlockCols]);  // GCC and Clang
+        }
         [[nodiscard]] int rows() const { return rows_; }
         [[nodiscard]] int cols() const { return cols_; }
         /** rows() x cols(). */
