@@ -79,6 +79,17 @@ TEST(HifEval, AgreesWithAHandCountedExample)
     EXPECT_DOUBLE_EQ(j["per_scan"][1]["DA"].get<double>(), 100.0);
     EXPECT_NE(r.output.find("SA 75.00  DA 66.67  AA 70.71  HA 70.59"), std::string::npos)
         << r.output;
+    // Per static class: road 1 of 2 kept, the parked car and the building kept.
+    const json& st = j["per_static_class"];
+    ASSERT_EQ(st.size(), 3u) << st;
+    EXPECT_EQ(st["road"]["static_total"], 2);
+    EXPECT_EQ(st["road"]["static_kept"], 1);
+    EXPECT_DOUBLE_EQ(st["road"]["SA"].get<double>(), 50.0);
+    EXPECT_EQ(st["car"]["static_kept"], 1);
+    EXPECT_EQ(st["building"]["static_total"], 1);
+    EXPECT_NE(r.output.find("road                           2         1   50.00"),
+              std::string::npos)
+        << r.output;
 
     // Per moving class, and, with the scans, per range band (points on the x axis at these
     // ranges) and with every point within 3 m counted dynamic, as the DynamicMap benchmark

@@ -325,6 +325,16 @@ EvaluateResult Evaluate::run(std::ostream& log) const
                       {"dynamic_total", s.dynamic_total},
                       {"dynamic_removed", s.dynamic_removed}};
     }
+    // What of each static class was kept (the static map's roads, walls, vegetation, poles).
+    nlohmann::ordered_json static_classes = nlohmann::ordered_json::object();
+    say(log, "%-22s %9s %9s %7s\n", "static class", "static", "kept", "SA");
+    for (const auto& [cls, s] : total.by_static_class)
+    {
+        const std::string n = hif::io::staticClassName(cls);
+        say(log, "%-22s %9zu %9zu %7.2f\n", n.c_str(), s.static_total, s.static_kept, s.sa());
+        static_classes[n] = {
+            {"SA", s.sa()}, {"static_total", s.static_total}, {"static_kept", s.static_kept}};
+    }
     if (total.has_ranges)
     {
         say(log, "%-14s %9s %9s %7s %7s\n", "range (m)", "static", "dynamic", "SA", "DA");
@@ -392,6 +402,7 @@ EvaluateResult Evaluate::run(std::ostream& log) const
         j["predicted_points_neither_static_nor_moving"] = other.points;
         j["total"] = toJson(total.total);
         j["per_moving_class"] = classes.is_null() ? nlohmann::ordered_json::object() : classes;
+        j["per_static_class"] = static_classes;
         if (total.has_ranges)
         {
             j["per_range"] = bands;

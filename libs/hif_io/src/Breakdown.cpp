@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file   Breakdown.cpp
- * @brief  Scores by moving class and range band.
+ * @brief  Scores by moving class, static class and range band.
  */
 #include "hif/io/Breakdown.h"
 
 #include <cmath>
+#include <map>
 
 namespace hif::io
 {
@@ -16,6 +17,37 @@ std::string movingClassName(uint32_t cls)
         "moving-on-rails", "moving-bus",       "moving-truck",  "moving-other-vehicle"};
     if (cls >= 252 && cls <= 259) return names[cls - 252];
     return "class " + std::to_string(cls);
+}
+
+std::string staticClassName(uint32_t cls)
+{
+    // SemanticKITTI's classes (semantic-kitti.yaml), those that do not move.
+    static const std::map<uint32_t, const char*> names = {{10, "car"},
+                                                          {11, "bicycle"},
+                                                          {13, "bus"},
+                                                          {15, "motorcycle"},
+                                                          {16, "on-rails"},
+                                                          {18, "truck"},
+                                                          {20, "other-vehicle"},
+                                                          {30, "person"},
+                                                          {31, "bicyclist"},
+                                                          {32, "motorcyclist"},
+                                                          {40, "road"},
+                                                          {44, "parking"},
+                                                          {48, "sidewalk"},
+                                                          {49, "other-ground"},
+                                                          {50, "building"},
+                                                          {51, "fence"},
+                                                          {52, "other-structure"},
+                                                          {60, "lane-marking"},
+                                                          {70, "vegetation"},
+                                                          {71, "trunk"},
+                                                          {72, "terrain"},
+                                                          {80, "pole"},
+                                                          {81, "traffic-sign"},
+                                                          {99, "other-object"}};
+    const auto it = names.find(cls);
+    return it != names.end() ? it->second : "class " + std::to_string(cls);
 }
 
 std::string rangeBandName(std::size_t band)
@@ -37,8 +69,9 @@ std::size_t rangeBand(double range)
 void Breakdown::add(uint32_t truth, bool removed, double range)
 {
     total.add(truth, removed);
-    if (isScored(truth) && isMovingClass(truth))
-        by_moving_class[truth & 0xffffu].add(truth, removed);
+    if (isScored(truth))
+        (isMovingClass(truth) ? by_moving_class : by_static_class)[truth & 0xffffu].add(truth,
+                                                                                        removed);
     const std::size_t band = rangeBand(range);
     if (band < by_range.size())
     {
@@ -51,6 +84,7 @@ Breakdown& Breakdown::operator+=(const Breakdown& o)
 {
     total += o.total;
     for (const auto& [cls, s] : o.by_moving_class) by_moving_class[cls] += s;
+    for (const auto& [cls, s] : o.by_static_class) by_static_class[cls] += s;
     for (std::size_t b = 0; b < by_range.size(); ++b) by_range[b] += o.by_range[b];
     has_ranges = has_ranges || o.has_ranges;
     return *this;

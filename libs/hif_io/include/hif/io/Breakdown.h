@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file   Breakdown.h
- * @brief  Scores broken down by moving class (car, person, bicyclist, ...) and by range band,
- *         for hif-eval.
+ * @brief  Scores broken down by moving class (car, person, bicyclist, ...), by static class
+ *         (road, building, vegetation, pole, ...) and by range band, for hif-eval.
  */
 #pragma once
 
@@ -18,6 +18,9 @@ namespace hif::io
 /** SemanticKITTI's name of a moving class (252 "moving-car" ... 259 "moving-other-vehicle"),
  *  else "class N". */
 [[nodiscard]] std::string movingClassName(uint32_t cls);
+/** SemanticKITTI's name of a class that does not move (10 "car", 40 "road", 70 "vegetation",
+ *  80 "pole", ...), else "class N". */
+[[nodiscard]] std::string staticClassName(uint32_t cls);
 
 /** Range bands, metres from the sensor: [0, 10), [10, 20), [20, 35), [35, 50), [50, inf). */
 constexpr std::array<double, 5> kRangeBandStarts = {0.0, 10.0, 20.0, 35.0, 50.0};
@@ -26,11 +29,12 @@ constexpr std::array<double, 5> kRangeBandStarts = {0.0, 10.0, 20.0, 35.0, 50.0}
 /** Band of a range (negative or NaN ranges: none, returns kRangeBandStarts.size()). */
 [[nodiscard]] std::size_t rangeBand(double range);
 
-/** Scores in total, per moving class present and per range band. */
+/** Scores in total, per moving class present, per static class present and per range band. */
 struct Breakdown
 {
     Scores total;
     std::map<uint32_t, Scores> by_moving_class;  ///< key: class 252-259
+    std::map<uint32_t, Scores> by_static_class;  ///< key: a scored class below 252 (or above 259)
     std::array<Scores, kRangeBandStarts.size()> by_range{};
     bool has_ranges = false;  ///< some point was added with a range
 
