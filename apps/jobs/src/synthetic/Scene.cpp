@@ -287,7 +287,8 @@ void addFoliage(Scene& s, std::mt19937& rng, double length)
     // a beam: a free path of about 1 m in a canopy, 0.4 m in a bush, 0.3 m in a hedge.
     constexpr double kCanopy = 1.0, kBush = 0.4, kHedge = 0.3;
     std::uniform_real_distribution<double> u(0, 1);
-    s.foliage_seed = (uint64_t(rng()) << 32) | rng();
+    const uint64_t high = rng();  // two statements: the order of the two draws is defined
+    s.foliage_seed = (high << 32) | rng();
     std::vector<Sphere> solid;
     for (const Sphere& c : s.spheres)
         if (c.label == kVegetation)
@@ -391,7 +392,8 @@ Scene radialWalkersScene(std::mt19937& rng, double length, double duration, int 
         const double speed = speeds[std::min(2, static_cast<int>(3 * u(rng)))];
         const bool towards = u(rng) < 0.5;
         // 0 to 15 degrees off the line of sight, to either side.
-        const double off = (u(rng) < 0.5 ? -1.0 : 1.0) * 15.0 * u(rng) * M_PI / 180.0;
+        const double side = u(rng) < 0.5 ? -1.0 : 1.0;  // drawn first: the order is defined
+        const double off = side * 15.0 * u(rng) * M_PI / 180.0;
         // Where the group is at mid-clip: 8 to 25 m from the sensor, mostly ahead, on the road
         // or the sidewalks.
         const double dist = 8.0 + 17.0 * u(rng);
@@ -482,10 +484,15 @@ Scene trafficScene(std::mt19937& rng, double length, double duration, double ego
                 v = ego_speed * (0.9 + 0.2 * u(rng));
                 break;
             case 2:  // the next lane, 1 to 3 m/s faster or slower
-                x = x_mid + (u(rng) < 0.5 ? -1.0 : 1.0) * (5.0 + 20.0 * u(rng));
+            {
+                // Each side drawn before its distance or speed: the order of draws is defined.
+                const double ahead = u(rng) < 0.5 ? -1.0 : 1.0;
+                x = x_mid + ahead * (5.0 + 20.0 * u(rng));
                 y = -3.0;
-                v = ego_speed + (u(rng) < 0.5 ? -1.0 : 1.0) * (1.0 + 2.0 * u(rng));
+                const double faster = u(rng) < 0.5 ? -1.0 : 1.0;
+                v = ego_speed + faster * (1.0 + 2.0 * u(rng));
                 break;
+            }
             default:  // the other way
                 x = x_mid + 15.0 + 25.0 * u(rng);
                 y = 3.0;
