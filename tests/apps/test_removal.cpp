@@ -74,38 +74,24 @@ TEST(Walkers, SyntheticWalkersAreRemovedOfflineAndOnline)
 // bushes along the sidewalks, hedges): a beam returns from a leaf at a random depth or passes
 // through, so other scans see through a hedge now and then, as they see through a mover. The
 // test must tell the two apart by the time they were seen in, and the pillar's share. Today:
-// vegetation kept 100 % offline and online, person DA 97.99 and 86.87, SA 99.79 and 99.76. A
-// lower share next to a mover (doc/algorithm.md, not kept) keeps 96.0 and 89.2 % of it here.
+// vegetation kept 99.30 % offline and 98.59 % online (hif-eval's per_static_class), person DA
+// 97.99 and 86.87, SA 99.79 and 99.76. A lower share next to a mover (doc/algorithm.md, not
+// kept) keeps 96.0 and 89.2 % of the vegetation here.
 TEST(Walkers, WalkersBesideFoliageAreRemovedAndTheFoliageKept)
 {
     if (HIF_SANITIZED) GTEST_SKIP() << "removal floors: the plain suite (scripts/test.sh)";
     const WorkDir work = workDir("foliage_walkers_" + std::to_string(getpid()));
     const std::string seq = work.path() + "/v0";
     ASSERT_NO_FATAL_FAILURE(makeClip(seq, "walkers", 0, 3, true));
-    const hif::io::KittiSequence kitti(seq);
     for (const bool online : {false, true})
     {
         SCOPED_TRACE(online ? "online" : "offline");
         const std::string name = online ? "online" : "offline";
         const json s =
             cleanAndScore(seq, name, [&](hif::jobs::CleanOptions& o) { o.online = online; });
-        std::size_t leaves = 0, leaves_removed = 0;
-        for (std::size_t i = 0; i < kitti.size(); ++i)
-        {
-            const auto truth = hif::io::readLabels(kitti.labelFile(i));
-            const auto kept = hif::io::readLabels(seq + "/" + name + "/predictions/" +
-                                                  hif::io::frameName(i) + ".label");
-            ASSERT_EQ(truth.size(), kept.size());
-            for (std::size_t k = 0; k < truth.size(); ++k)
-                if ((truth[k] & 0xFFFF) == 70)
-                {
-                    ++leaves;
-                    leaves_removed += hif::io::isMovingClass(kept[k] & 0xFFFF);
-                }
-        }
-        ASSERT_GT(leaves, 20000u);
-        const double leaves_kept = 100.0 - 100.0 * double(leaves_removed) / double(leaves);
-        EXPECT_GE(leaves_kept, 99.0);
+        const json& leaves = s["per_static_class"]["vegetation"];
+        ASSERT_GT(leaves["static_total"].get<int>(), 20000) << s["per_static_class"];
+        EXPECT_GE(leaves["SA"].get<double>(), online ? 98.0 : 99.0);
         EXPECT_GE(s["total"]["SA"].get<double>(), 99.5);
         EXPECT_GE(s["per_moving_class"]["moving-person"]["DA"].get<double>(), online ? 80.0 : 90.0);
     }
