@@ -319,7 +319,7 @@ EvaluateResult Evaluate::run(std::ostream& log) const
     say(log, "%-22s %9s %9s %7s\n", "moving class", "dynamic", "removed", "DA");
     for (const auto& [cls, s] : total.by_moving_class)
     {
-        const std::string n = hif::io::movingClassName(cls);
+        const std::string n = hif::io::className(cls);
         say(log, "%-22s %9zu %9zu %7.2f\n", n.c_str(), s.dynamic_total, s.dynamic_removed, s.da());
         classes[n] = {{"DA", s.da()},
                       {"dynamic_total", s.dynamic_total},
@@ -330,7 +330,7 @@ EvaluateResult Evaluate::run(std::ostream& log) const
     say(log, "%-22s %9s %9s %7s\n", "static class", "static", "kept", "SA");
     for (const auto& [cls, s] : total.by_static_class)
     {
-        const std::string n = hif::io::staticClassName(cls);
+        const std::string n = hif::io::className(cls);
         say(log, "%-22s %9zu %9zu %7.2f\n", n.c_str(), s.static_total, s.static_kept, s.sa());
         static_classes[n] = {
             {"SA", s.sa()}, {"static_total", s.static_total}, {"static_kept", s.static_kept}};

@@ -10,18 +10,9 @@
 
 namespace hif::io
 {
-std::string movingClassName(uint32_t cls)
+std::string className(uint32_t cls)
 {
-    static const char* const names[] = {
-        "moving-car",      "moving-bicyclist", "moving-person", "moving-motorcyclist",
-        "moving-on-rails", "moving-bus",       "moving-truck",  "moving-other-vehicle"};
-    if (cls >= 252 && cls <= 259) return names[cls - 252];
-    return "class " + std::to_string(cls);
-}
-
-std::string staticClassName(uint32_t cls)
-{
-    // SemanticKITTI's classes (semantic-kitti.yaml), those that do not move.
+    // SemanticKITTI's classes (semantic-kitti.yaml).
     static const std::map<uint32_t, const char*> names = {{10, "car"},
                                                           {11, "bicycle"},
                                                           {13, "bus"},
@@ -45,7 +36,15 @@ std::string staticClassName(uint32_t cls)
                                                           {72, "terrain"},
                                                           {80, "pole"},
                                                           {81, "traffic-sign"},
-                                                          {99, "other-object"}};
+                                                          {99, "other-object"},
+                                                          {252, "moving-car"},
+                                                          {253, "moving-bicyclist"},
+                                                          {254, "moving-person"},
+                                                          {255, "moving-motorcyclist"},
+                                                          {256, "moving-on-rails"},
+                                                          {257, "moving-bus"},
+                                                          {258, "moving-truck"},
+                                                          {259, "moving-other-vehicle"}};
     const auto it = names.find(cls);
     return it != names.end() ? it->second : "class " + std::to_string(cls);
 }

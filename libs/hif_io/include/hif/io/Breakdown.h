@@ -15,12 +15,9 @@
 
 namespace hif::io
 {
-/** SemanticKITTI's name of a moving class (252 "moving-car" ... 259 "moving-other-vehicle"),
- *  else "class N". */
-[[nodiscard]] std::string movingClassName(uint32_t cls);
-/** SemanticKITTI's name of a class that does not move (10 "car", 40 "road", 70 "vegetation",
- *  80 "pole", ...), else "class N". */
-[[nodiscard]] std::string staticClassName(uint32_t cls);
+/** SemanticKITTI's name of a class (10 "car", 40 "road", 70 "vegetation", 80 "pole", ...,
+ *  252 "moving-car" ... 259 "moving-other-vehicle"), else "class N". */
+[[nodiscard]] std::string className(uint32_t cls);
 
 /** Range bands, metres from the sensor: [0, 10), [10, 20), [20, 35), [35, 50), [50, inf). */
 constexpr std::array<double, 5> kRangeBandStarts = {0.0, 10.0, 20.0, 35.0, 50.0};
