@@ -56,21 +56,12 @@ public:
          *  its size is not rows x cols. */
         void assign(int rows, int cols, const std::vector<uint16_t>& dense);
         /** The cell at (row, col), which must lie in the image. */
-        [[nodiscard]] uint16_t at(int row, int col) const
-        {
-            const auto c = static_cast<uint32_t>(col);
-            return cells_[blocks_[static_cast<std::size_t>(row) * blocks_per_row_ +
-                                  c / kBlockCols] +
-                          c % kBlockCols];
-        }
+        [[nodiscard]] uint16_t at(int row, int col) const { return cells_[index(row, col)]; }
         /** Asks the CPU to fetch the cell at (row, col) ahead of at(), which must lie in the
          *  image (a hint: no effect on any result). */
         void prefetch(int row, int col) const
         {
-            const auto c = static_cast<uint32_t>(col);
-            __builtin_prefetch(
-                &cells_[blocks_[static_cast<std::size_t>(row) * blocks_per_row_ + c / kBlockCols] +
-                        c % kBlockCols]);  // GCC and Clang
+            __builtin_prefetch(&cells_[index(row, col)]);  // GCC and Clang
         }
         [[nodiscard]] int rows() const { return rows_; }
         [[nodiscard]] int cols() const { return cols_; }
@@ -105,6 +96,13 @@ public:
         friend bool operator==(const Image& a, const Image& b);
 
     private:
+        /** Where the cell at (row, col) is in cells_. */
+        [[nodiscard]] std::size_t index(int row, int col) const
+        {
+            const auto c = static_cast<uint32_t>(col);
+            return blocks_[static_cast<std::size_t>(row) * blocks_per_row_ + c / kBlockCols] +
+                   c % kBlockCols;
+        }
         /** Where every block without a return starts: cells_ begins with one block of
          *  kNoReturn, so at() needs no branch. */
         static constexpr uint32_t kNoBlock = 0;
