@@ -713,6 +713,57 @@ TEST(SeeThroughMisses, ABeamThroughAnIntervalsPaddingEmptiesOnlyTheHeightsItCros
 
 namespace
 {
+/** Pillar (20, 0) of a sparse LiDAR's map (rings 2 degrees apart: padding 0.36 m at 20.5 m)
+ *  holding `intervals`; then one scan of a beam at height `beam_z` at the pillar, returning
+ *  40 m away (the pillar is not hit: a see-through miss). Is height `z` still static? */
+bool staticAfterSeeThrough(std::vector<Interval> intervals, double beam_z, double z)
+{
+    Params prm;
+    prm.sensor_from_scans = false;
+    prm.see_through_range = 40.0;
+    PillarGrid grid(GridGeometry(), prm);
+    std::vector<double> rings;
+    for (int e = -16; e <= 16; e += 2) rings.push_back(e);
+    grid.setSensorModel(SensorModel::fromBeams(rings, 0.2));
+    grid.setPillar({20, 0}, pillar(0.3, std::move(intervals)));
+    std::vector<float> x, y, z_;
+    beamsToward(20.5, 0.5, beam_z, beam_z, 40.0, x, y, z_);
+    EXPECT_EQ(x.size(), 1u);
+    grid.insertScan({x.data(), y.data(), z_.data(), x.size()});
+    return grid.isStatic(20.5, 0.5, z);
+}
+}  // namespace
+
+TEST(SeeThroughMisses, APaddingSliverUnderTheGroundLeavesTheGroundAFloor)
+{
+    // Ground seen at -1.75..-1.65 m (cells -35..-33) padded by 8 cells: [-43, -25). A later
+    // scan, whose ground there lay a cell lower, added a sliver of padding under it,
+    // [-44, -43). A beam passing 0.25 m above the ground (cell -29) crosses its padding.
+    const std::vector<Interval> ground{iv(-43, -25, 0.56)};
+    const std::vector<Interval> sliver_under{iv(-44, -43, 0.49), iv(-43, -25, 0.56)};
+    EXPECT_TRUE(staticAfterSeeThrough(ground, -1.45, -1.7));
+    EXPECT_FALSE(staticAfterSeeThrough(ground, -1.45, -1.45)) << "the heights it crossed";
+    // The sliver (seen once, no wider than the padding) and the ground touch, below the
+    // sensor: one floor, which the beam passed over, not through (the ground itself would be
+    // an object, all of it gone, otherwise).
+    EXPECT_TRUE(staticAfterSeeThrough(sliver_under, -1.45, -1.7));
+    EXPECT_FALSE(staticAfterSeeThrough(sliver_under, -1.45, -1.45));
+    // Seen twice, or wider than the padding, the lowest piece is content of its own (a
+    // walker's feet, a car's sill): what stands on it is an object.
+    EXPECT_FALSE(staticAfterSeeThrough({iv(-44, -43, 0.6), iv(-43, -25, 0.56)}, -1.45, -1.7));
+    EXPECT_FALSE(staticAfterSeeThrough({iv(-60, -43, 0.49), iv(-43, -25, 0.56)}, -1.45, -1.7));
+    // A beam through what was seen of the floor shows it gone, sliver and all.
+    EXPECT_FALSE(staticAfterSeeThrough(sliver_under, -1.7, -1.7));
+    EXPECT_FALSE(staticAfterSeeThrough(sliver_under, -1.7, -2.18));
+    // Above the sensor two touching intervals are not one floor under the beams: the upper
+    // one is an object, gone when a beam passes through any part of it.
+    const std::vector<Interval> above{iv(2, 3, 0.49), iv(3, 21, 0.56)};
+    EXPECT_TRUE(staticAfterSeeThrough(above, 1.6, 0.6)) << "a beam above it, through nothing";
+    EXPECT_FALSE(staticAfterSeeThrough(above, 0.3, 0.6));
+}
+
+namespace
+{
 /** A wall from -1.5 m to 1.5 m in pillar (20, 0), hit by a dense scan, under a sparse model
  *  (beams 2 degrees apart: padded by 0.36 m at 20.5 m); then one scan of beams at `heights`
  *  (at the pillar), each returning 40 m away. Is height `z` of the wall still static? */

@@ -150,8 +150,9 @@ struct BeamGate
     /** The sensor's height in the world frame, metres (-up.base, given exactly). */
     double sensor_z = 0.0;
     /** Log-odds up to which an interval counts as seen once (p_empty_init and one hit), for
-     *  skyFor(); -inf: a beam that returned nothing is never evidence (a sensor without rings,
-     *  whose cells without a return may have had no beam). */
+     *  skyFor() and floorOrObject(); -inf: a beam that returned nothing is never evidence (a
+     *  sensor without rings, whose cells without a return may have had no beam), and the
+     *  floor is the lowest interval alone. */
     float seen_once = -std::numeric_limits<float>::infinity();
 
     /** Whether beams of the sensor's rings that returned nothing above the horizon count as
@@ -175,16 +176,26 @@ struct BeamGate
     }
 
     /** What a beam must cross to show all of the piece [lo, hi) of interval `k` of `iv`
-     *  (the pillar's intervals, ascending), for passedCells(). The pillar's lowest interval is
-     *  its floor (the ground, mostly): beams reach it at grazing angles from above and pass
-     *  through the padding around what was seen of it, so only a beam through what was seen
-     *  (its core) shows all of it gone, any other only the heights it crossed. An interval
-     *  above the floor is an object: a beam through any part of it shows it gone. */
-    [[nodiscard]] Span floorOrObject(const Interval* iv, std::size_t k, int32_t lo,
-                                     int32_t hi) const
+     *  (the pillar's intervals, ascending), for passedCells(). The pillar's floor (the
+     *  ground, mostly) is its lowest interval: beams reach it at grazing angles from above
+     *  and pass through the padding around what was seen of it, so only a beam through what
+     *  was seen (its core) shows all of it gone, any other only the heights it crossed. An
+     *  interval above the floor is an object: a beam through any part of it shows it gone.
+     *  With `pieces` > 1, up to that many of the lowest intervals make the floor while each
+     *  is a sliver of padding under the next (seen once, no wider than its padding, touching
+     *  the next, which lies below the sensor): a later scan that saw the ground a little lower
+     *  adds such a sliver under it, which would otherwise make the ground itself an object.
+     *  The core is then the whole floor's. */
+    [[nodiscard]] Span floorOrObject(const Interval* iv, std::size_t pieces, std::size_t k,
+                                     int32_t lo, int32_t hi) const
     {
-        if (k > 0) return {lo, hi};
-        const Span c = widthsOf(iv[0].lo, iv[0].hi).core(iv[0].lo, iv[0].hi);
+        std::size_t top = 0;  // the floor's last interval
+        while (top + 1 < pieces && iv[top].hi == iv[top + 1].lo && iv[top].logodds <= seen_once &&
+               iv[top].hi - iv[top].lo <= widthsOf(iv[top].lo, iv[top].hi).pad &&
+               iv[top + 1].hi * res <= sensor_z)
+            ++top;
+        if (k > top) return {lo, hi};
+        const Span c = widthsOf(iv[0].lo, iv[top].hi).core(iv[0].lo, iv[top].hi);
         return {std::max(c.lo, lo), std::min(c.hi, hi)};
     }
 

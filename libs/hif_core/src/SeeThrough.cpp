@@ -28,8 +28,10 @@ void seeThroughPillar(Pillar& pil, const BeamGate& gate, const LogOddsModel& mod
             continue;
         }
         const auto k = static_cast<std::size_t>(&iv - pil.intervals.data());
-        gate.passedCells(iv.lo, iv.hi, gate.floorOrObject(pil.intervals.data(), k, iv.lo, iv.hi),
-                         passed, gate.skyFor(iv.logodds));
+        gate.passedCells(
+            iv.lo, iv.hi,
+            gate.floorOrObject(pil.intervals.data(), pil.intervals.size(), k, iv.lo, iv.hi),
+            passed, gate.skyFor(iv.logodds));
         int32_t at = iv.lo;
         for (const Span& s : passed)
         {
