@@ -30,8 +30,8 @@ void seeThroughPillar(Pillar& pil, const BeamGate& gate, const LogOddsModel& mod
         const auto k = static_cast<std::size_t>(&iv - pil.intervals.data());
         gate.passedCells(
             iv.lo, iv.hi,
-            gate.floorOrObject(pil.intervals.data(), pil.intervals.size(), k, iv.lo, iv.hi),
-            passed, gate.skyFor(iv.logodds));
+            gate.floorOrObject(pil.intervals.data(), pil.intervals.size(), k, iv.lo, iv.hi), passed,
+            gate.skyFor(iv.logodds));
         int32_t at = iv.lo;
         for (const Span& s : passed)
         {
