@@ -99,7 +99,7 @@ TEST(VoxelMap, HoldsOnePointPerVoxelOfTheKeptPointsWithinItsMemory)
 {
     const auto dir = workDir("voxel_map");
     const std::string d = dir.path();
-    auto r = hif::test::synthesize(d + "/seq", 40);
+    auto r = hif::test::synthesize(d + "/seq", 16);
     ASSERT_EQ(r.code, 0) << r.output;
     // 1 MiB for the voxels: most of the map waits in run files.
     r = hif::test::clean(d + "/seq", d + "/small",
