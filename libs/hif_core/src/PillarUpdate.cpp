@@ -156,10 +156,10 @@ void PillarUpdater::update(Pillar& g, const Span* t, std::size_t nt, int32_t cei
             else if (gate)
             {
                 // Eq. 13 where beams of the scan passed through; elsewhere the scan could not
-                // see: keep (BeamGate::floorOrObject(); the lowest interval is the floor, as
-                // slivers under it taken for the floor here cost 04 and 08 at 16 rings 0.2-0.3
-                // DA, doc/algorithm.md).
-                const Span core = gate->floorOrObject(gi, 1, i, lo, hi);
+                // see: keep (BeamGate::floorOrObject(); the lowest interval alone is the floor,
+                // as slivers under it taken for the floor here, BeamGate::floorTop(), cost 04
+                // and 08 at 16 rings 0.2-0.3 DA, doc/algorithm.md).
+                const Span core = gate->floorOrObject(gi, 0, i, lo, hi);
                 gate->passedCells(lo, hi, {std::max(core.lo, lo), std::min(core.hi, hi)}, passed_,
                                   gate->skyFor(gi[i].logodds));
                 int32_t at = lo;

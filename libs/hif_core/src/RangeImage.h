@@ -150,7 +150,7 @@ struct BeamGate
     /** The sensor's height in the world frame, metres (-up.base, given exactly). */
     double sensor_z = 0.0;
     /** Log-odds up to which an interval counts as seen once (p_empty_init and one hit), for
-     *  skyFor() and floorOrObject(); -inf: a beam that returned nothing is never evidence (a
+     *  skyFor() and floorTop(); -inf: a beam that returned nothing is never evidence (a
      *  sensor without rings, whose cells without a return may have had no beam), and the
      *  floor is the lowest interval alone. */
     float seen_once = -std::numeric_limits<float>::infinity();
@@ -175,25 +175,31 @@ struct BeamGate
         return IntervalWidths::of(*grid, d, mid / d);
     }
 
-    /** What a beam must cross to show all of the piece [lo, hi) of interval `k` of `iv`
-     *  (the pillar's intervals, ascending), for passedCells(). The pillar's floor (the
-     *  ground, mostly) is its lowest interval: beams reach it at grazing angles from above
-     *  and pass through the padding around what was seen of it, so only a beam through what
-     *  was seen (its core) shows all of it gone, any other only the heights it crossed. An
-     *  interval above the floor is an object: a beam through any part of it shows it gone.
-     *  With `pieces` > 1, up to that many of the lowest intervals make the floor while each
-     *  is a sliver of padding under the next (seen once, no wider than its padding, touching
-     *  the next, which lies below the sensor): a later scan that saw the ground a little lower
-     *  adds such a sliver under it, which would otherwise make the ground itself an object.
-     *  The core is then the whole floor's. */
-    [[nodiscard]] Span floorOrObject(const Interval* iv, std::size_t pieces, std::size_t k,
-                                     int32_t lo, int32_t hi) const
+    /** The last of the `n` intervals `iv` (the pillar's, ascending) that make its floor, for
+     *  floorOrObject(): the lowest, and above it the next while each is a sliver of padding
+     *  under the next (seen once, no wider than its padding, touching the next, which lies
+     *  below the sensor). A later scan that saw the ground a little lower adds such a sliver
+     *  under it, which would otherwise make the ground itself an object. */
+    [[nodiscard]] std::size_t floorTop(const Interval* iv, std::size_t n) const
     {
-        std::size_t top = 0;  // the floor's last interval
-        while (top + 1 < pieces && iv[top].hi == iv[top + 1].lo && iv[top].logodds <= seen_once &&
+        std::size_t top = 0;
+        while (top + 1 < n && iv[top].hi == iv[top + 1].lo && iv[top].logodds <= seen_once &&
                iv[top].hi - iv[top].lo <= widthsOf(iv[top].lo, iv[top].hi).pad &&
                iv[top + 1].hi * res <= sensor_z)
             ++top;
+        return top;
+    }
+
+    /** What a beam must cross to show all of the piece [lo, hi) of interval `k` of `iv`
+     *  (the pillar's intervals, ascending), for passedCells(). The pillar's floor (the
+     *  ground, mostly), its intervals up to `top` (0: the lowest alone; floorTop()): beams
+     *  reach it at grazing angles from above and pass through the padding around what was
+     *  seen of it, so only a beam through what was seen (the whole floor's core) shows all of
+     *  it gone, any other only the heights it crossed. An interval above the floor is an
+     *  object: a beam through any part of it shows it gone. */
+    [[nodiscard]] Span floorOrObject(const Interval* iv, std::size_t top, std::size_t k, int32_t lo,
+                                     int32_t hi) const
+    {
         if (k > top) return {lo, hi};
         const Span c = widthsOf(iv[0].lo, iv[top].hi).core(iv[0].lo, iv[top].hi);
         return {std::max(c.lo, lo), std::min(c.hi, hi)};

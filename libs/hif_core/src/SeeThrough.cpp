@@ -14,12 +14,14 @@ namespace hif::detail
 namespace
 {
 /** The see-through misses of one pillar the scan did not hit: Eq. 13 where beams passed
- *  through its intervals (BeamGate::floorOrObject()). `passed` and `pieces` are scratch. */
+ *  through its intervals (BeamGate::floorTop(), floorOrObject()). `passed` and `pieces` are
+ * scratch. */
 void seeThroughPillar(Pillar& pil, const BeamGate& gate, const LogOddsModel& model, std::size_t cap,
                       std::vector<Span>& passed, std::vector<Interval>& pieces)
 {
     pieces.clear();
     bool changed = false;
+    const std::size_t floor_top = gate.floorTop(pil.intervals.data(), pil.intervals.size());
     for (const Interval& iv : pil.intervals)
     {
         if (!model.missChanges(iv.logodds))
@@ -28,10 +30,9 @@ void seeThroughPillar(Pillar& pil, const BeamGate& gate, const LogOddsModel& mod
             continue;
         }
         const auto k = static_cast<std::size_t>(&iv - pil.intervals.data());
-        gate.passedCells(
-            iv.lo, iv.hi,
-            gate.floorOrObject(pil.intervals.data(), pil.intervals.size(), k, iv.lo, iv.hi), passed,
-            gate.skyFor(iv.logodds));
+        gate.passedCells(iv.lo, iv.hi,
+                         gate.floorOrObject(pil.intervals.data(), floor_top, k, iv.lo, iv.hi),
+                         passed, gate.skyFor(iv.logodds));
         int32_t at = iv.lo;
         for (const Span& s : passed)
         {
