@@ -2,14 +2,17 @@
 /**
  * @file   synthetic_suite.h
  * @brief  Test helper: a test suite whose tests share one short synthetic sequence and its
- *         rawlog, made once for the suite (in process), in a work folder (one per process: CTest
- *         runs two test processes at a time) that goes when the suite passes.
+ *         rawlog, in a work folder (one per process: CTest runs two test processes at a time)
+ *         that goes when the suite passes. Under CTest the sequence is copied from the ones the
+ *         fixture `hif_sequences` made once for the run (make_sequences.cpp, folder in
+ *         $HIF_TEST_SEQUENCES); run on its own, the suite makes it (in process, the same way).
  */
 #pragma once
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -21,6 +24,15 @@
 
 namespace hif::test
 {
+/** A synthetic sequence of `scans` scans (the generator's defaults) in `dir`/seq and its
+ *  conversion in `dir`/scans.rawlog. */
+inline Result makeSequence(const std::string& dir, long long scans)
+{
+    const auto g = synthesize(dir + "/seq", scans);
+    const auto c = g.code == 0 ? toRawlog(dir + "/seq", dir + "/scans.rawlog") : g;
+    return {c.code, g.output + (g.code == 0 ? c.output : "")};
+}
+
 /** The suite `Suite`, which names its folder (`Suite::kFolder`), its number of scans
  *  (`Suite::kScans`) and its rawlog (`Suite::kRawlog`): `root_` holds `seq/` (the sequence) and
  *  the rawlog (its conversion). */
@@ -33,10 +45,26 @@ protected:
         work_ = std::make_unique<WorkDir>(kWork + "/" + Suite::kFolder + "_" +
                                           std::to_string(getpid()));
         root_ = work_->path();
-        const auto g = synthesize(root_ + "/seq", Suite::kScans);
-        const auto c = g.code == 0 ? toRawlog(root_ + "/seq", root_ + "/" + Suite::kRawlog) : g;
-        setup_ok_ = g.code == 0 && c.code == 0;
-        setup_log_ = g.output + c.output;
+        const char* shared = std::getenv("HIF_TEST_SEQUENCES");
+        const std::string made =
+            shared ? std::string(shared) + "/" + std::to_string(Suite::kScans) : "";
+        if (!made.empty() && std::filesystem::exists(made + "/scans.rawlog"))
+        {
+            std::error_code ec;
+            std::filesystem::copy(made + "/seq", root_ + "/seq",
+                                  std::filesystem::copy_options::recursive, ec);
+            if (!ec)
+                std::filesystem::copy_file(made + "/scans.rawlog", root_ + "/" + Suite::kRawlog,
+                                           ec);
+            setup_ok_ = !ec;
+            setup_log_ = "copying " + made + ": " + ec.message();
+            return;
+        }
+        const auto r = makeSequence(root_, Suite::kScans);
+        if (r.code == 0 && std::string(Suite::kRawlog) != "scans.rawlog")
+            std::filesystem::rename(root_ + "/scans.rawlog", root_ + "/" + Suite::kRawlog);
+        setup_ok_ = r.code == 0;
+        setup_log_ = r.output;
     }
     // A failed set-up fails every test (gtest would report them as skipped).
     void SetUp() override { ASSERT_TRUE(setup_ok_) << setup_log_; }
