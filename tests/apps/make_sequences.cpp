@@ -7,7 +7,7 @@
  *         options, as a suite makes them when run on its own.
  *         Usage: hif_make_sequences <folder> <scans>... -> <folder>/<scans>/{seq/,scans.rawlog}
  */
-#include <cstdlib>
+#include <exception>
 #include <iostream>
 #include <string>
 
@@ -24,7 +24,17 @@ int main(int argc, char** argv)
     for (int i = 2; i < argc; ++i)
     {
         const std::string dir = std::string(argv[1]) + "/" + argv[i];
-        const auto r = hif::test::makeSequence(dir, std::stoll(argv[i]));
+        long long scans = 0;
+        try
+        {
+            scans = std::stoll(argv[i]);
+        }
+        catch (const std::exception&)
+        {
+            std::cerr << "hif_make_sequences: '" << argv[i] << "' is not a number of scans\n";
+            return 2;
+        }
+        const auto r = hif::test::makeSequence(dir, scans);
         if (r.code != 0)
         {
             std::cerr << "hif_make_sequences: " << dir << ":\n" << r.output;
