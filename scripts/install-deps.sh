@@ -3,7 +3,7 @@
 # Installs hif's build and test dependencies from Debian packages (bookworm). Idempotent.
 set -euo pipefail
 PKGS=(cmake g++ make pkg-config libmrpt-dev libeigen3-dev libabsl-dev libgtest-dev nlohmann-json3-dev
-  libtbb-dev libbenchmark-dev clang-format clang libclang-rt-14-dev libopencv-dev mrpt-apps)
+  liblzf-dev libtbb-dev libbenchmark-dev clang-format clang libclang-rt-14-dev libopencv-dev mrpt-apps)
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -2,7 +2,8 @@
 /**
  * @file   test_slam_folders.cpp
  * @brief  The inputs LiDAR SLAM systems write: a folder of per-scan clouds in the sensor frame
- *         (.pcd or .ply) with a KITTI- or TUM-format trajectory give the KITTI folder's classes;
+ *         (.pcd, PCL's compressed .pcd too, or .ply) with a KITTI- or TUM-format trajectory
+ *         give the KITTI folder's classes;
  *         poses that do not belong to the scans are warned about; a single cloud is named.
  */
 #include <gtest/gtest.h>
@@ -23,6 +24,7 @@
 #include "hif/io/Labels.h"
 #include "job_runner.h"
 #include "kitti_fixture.h"
+#include "pcl_compressed.h"
 
 namespace fs = std::filesystem;
 using hif::test::expectError;
@@ -105,6 +107,15 @@ TEST(SlamFolders, CloudsWithTheirPosesGiveTheKittiFoldersClasses)
     // elsewhere (--poses); the same clouds with a TUM trajectory.
     writeScans(seq, w + "/pcd_scans", ".pcd");
     writeKittiPoses(poses, w + "/pcd_scans/poses.txt");
+    // The same clouds as PCL saves them compressed (savePCDFileBinaryCompressed).
+    fs::create_directories(w + "/compressed_scans");
+    for (std::size_t i = 0; i < seq.size(); ++i)
+    {
+        const hif::io::Cloud c = seq.readScan(i);
+        hif::test::writePclCompressedPcd(w + "/compressed_scans/" + hif::io::frameName(i) + ".pcd",
+                                         c.x, c.y, c.z, c.intensity);
+    }
+    writeKittiPoses(poses, w + "/compressed_scans/poses.txt");
     writeScans(seq, w + "/ply_scans", ".ply");
     writeKittiPoses(poses, w + "/ply_poses_kitti.txt");
     {
@@ -169,6 +180,10 @@ TEST(SlamFolders, CloudsWithTheirPosesGiveTheKittiFoldersClasses)
         EXPECT_EQ(*times.begin(), 0.0);
         EXPECT_EQ(*times.rbegin(), double(seq.size() - 1));
     }
+
+    r = clean(w + "/compressed_scans", w + "/compressed_out");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(predictions(w + "/compressed_out", seq.size()), reference);
 
     r = clean(w + "/ply_scans", w + "/ply_out", w + "/ply_poses_kitti.txt");
     ASSERT_EQ(r.code, 0) << r.output;

@@ -3,8 +3,9 @@
  * @file   test_input_files.cpp
  * @brief  What the readers take and refuse: poses that are not rigid motions, a calibration with
  *         two Tr lines, numbers that are not finite or not numbers (named by line and position);
- *         PCD files with float64 coordinates (UTM) and PCL's "nan" for an invalid point; and
- *         the writer's switch to float64 where a coordinate needs it.
+ *         PCD files with float64 coordinates (UTM) and PCL's "nan" for an invalid point; PCL's
+ *         binary_compressed PCD files, and intensity as a driver's uint8; and the writer's
+ *         switch to float64 where a coordinate needs it.
  */
 #include <gtest/gtest.h>
 
@@ -22,6 +23,7 @@
 #include "hif/io/KittiSequence.h"
 #include "hif/io/Rings.h"
 #include "kitti_fixture.h"
+#include "pcl_compressed.h"
 #include "work_dir.h"
 
 namespace fs = std::filesystem;
@@ -228,6 +230,179 @@ TEST(ReadPcd, ABinaryBodyOfManyChunksReadsBackPointForPoint)
             }
         EXPECT_EQ(wrong, 0u) << "SIZE " << size;
     }
+}
+
+/** The points of a LiDAR driver's cloud (as Hesai's and Robosense's write them: intensity a
+ *  uint8, a time and a ring, padding between), written by PCL as binary or binary_compressed. */
+struct DriverCloud
+{
+    static constexpr std::size_t kPoints = 5000;
+    static float coordinate(std::size_t i, int axis)
+    {
+        return static_cast<float>(0.01 * double(i) - 20.0 * axis);
+    }
+    static uint8_t intensity(std::size_t i) { return static_cast<uint8_t>(i * 7 % 256); }
+
+    static constexpr const char* kHeader =
+        "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS x y z _ intensity "
+        "timestamp ring\nSIZE 4 4 4 1 1 8 2\nTYPE F F F U U F U\nCOUNT 1 1 1 3 1 1 1\n"
+        "WIDTH 5000\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 5000\n";
+    static constexpr std::size_t kRecord = 4 * 3 + 3 + 1 + 8 + 2;
+    static constexpr std::size_t kPacked = kRecord - 3;  // without the padding
+
+    /** Field by field (x of every point, then y, ...), padding left out, as PCL packs it. */
+    static std::vector<char> packed()
+    {
+        std::vector<char> body(kPoints * kPacked);
+        char* at = body.data();
+        for (int axis = 0; axis < 3; ++axis)
+            for (std::size_t i = 0; i < kPoints; ++i, at += 4)
+            {
+                const float v = coordinate(i, axis);
+                std::memcpy(at, &v, 4);
+            }
+        for (std::size_t i = 0; i < kPoints; ++i) *at++ = static_cast<char>(intensity(i));
+        for (std::size_t i = 0; i < kPoints; ++i, at += 8)
+        {
+            const double t = 0.1 * double(i) / kPoints;
+            std::memcpy(at, &t, 8);
+        }
+        for (std::size_t i = 0; i < kPoints; ++i, at += 2)
+        {
+            const auto ring = static_cast<uint16_t>(i % 32);
+            std::memcpy(at, &ring, 2);
+        }
+        return body;
+    }
+
+    static void writeBinary(const std::string& file)
+    {
+        const std::vector<char> body = packed();
+        std::ofstream f(file, std::ios::binary);
+        f << kHeader << "DATA binary\n";
+        const std::size_t widths[] = {4, 4, 4, 1, 8, 2};  // the packed fields
+        for (std::size_t i = 0; i < kPoints; ++i)
+        {
+            std::size_t block = 0;
+            for (std::size_t k = 0; k < 6; ++k)
+            {
+                if (k == 3) f.write("\0\0\0", 3);  // the padding, before intensity
+                f.write(body.data() + block * kPoints + i * widths[k],
+                        static_cast<std::streamsize>(widths[k]));
+                block += widths[k];
+            }
+        }
+    }
+
+    /** PCL's layout: the two sizes (compressed, uncompressed), then the LZF data. */
+    static std::vector<char> compressed() { return hif::test::pclCompressedBody(packed()); }
+
+    static void writeCompressed(const std::string& file, const std::vector<char>& data)
+    {
+        std::ofstream f(file, std::ios::binary);
+        f << kHeader << "DATA binary_compressed\n";
+        f.write(data.data(), static_cast<std::streamsize>(data.size()));
+    }
+};
+
+std::string readError(const std::string& file)
+{
+    try
+    {
+        (void)hif::io::readPcd(file);
+    }
+    catch (const std::exception& e)
+    {
+        return e.what();
+    }
+    return "";
+}
+
+// PCL saves clouds as binary_compressed too (pcl::io::savePCDFileBinaryCompressed, pcl_convert):
+// such a file reads as the same cloud written binary, padding fields and all; intensity stored
+// as a uint8 (a driver's) reads as its value.
+TEST(ReadPcd, BinaryCompressedReadsAsItsBinaryTwin)
+{
+    const auto work = scratch("compressed");
+    const std::string binary = work.path() + "/binary.pcd";
+    const std::string compressed = work.path() + "/compressed.pcd";
+    DriverCloud::writeBinary(binary);
+    const std::vector<char> data = DriverCloud::compressed();
+    DriverCloud::writeCompressed(compressed, data);
+    ASSERT_LT(fs::file_size(compressed), fs::file_size(binary));
+
+    const hif::io::PcdCloud b = hif::io::readPcd(binary);
+    const hif::io::PcdCloud c = hif::io::readPcd(compressed);
+    ASSERT_EQ(b.size(), DriverCloud::kPoints);
+    ASSERT_EQ(c.size(), DriverCloud::kPoints);
+    EXPECT_TRUE(c.has_viewpoint);
+    std::size_t wrong = 0;
+    for (std::size_t i = 0; i < DriverCloud::kPoints; ++i)
+    {
+        const float expected[3] = {DriverCloud::coordinate(i, 0), DriverCloud::coordinate(i, 1),
+                                   DriverCloud::coordinate(i, 2)};
+        for (const hif::io::PcdCloud* cloud : {&b, &c})
+            wrong += cloud->x[i] != expected[0] || cloud->y[i] != expected[1] ||
+                     cloud->z[i] != expected[2] ||
+                     cloud->intensity[i] != static_cast<float>(DriverCloud::intensity(i));
+    }
+    EXPECT_EQ(wrong, 0u);
+}
+
+// What goes wrong in a compressed body is named, with the file: data cut short, sizes that do
+// not match POINTS and the fields, data that do not uncompress.
+TEST(ReadPcd, ABrokenCompressedBodyIsNamed)
+{
+    const auto work = scratch("compressed_bad");
+    const std::string file = work.path() + "/bad.pcd";
+    const std::vector<char> good = DriverCloud::compressed();
+
+    std::vector<char> cut(good.begin(),
+                          good.begin() + static_cast<std::ptrdiff_t>(good.size() / 2));
+    DriverCloud::writeCompressed(file, cut);
+    std::string e = readError(file);
+    EXPECT_NE(e.find(file), std::string::npos) << e;
+    EXPECT_NE(e.find("is truncated"), std::string::npos) << e;
+
+    std::vector<char> sizes = good;
+    sizes[4] = static_cast<char>(sizes[4] + 1);  // the uncompressed size, one byte more
+    DriverCloud::writeCompressed(file, sizes);
+    e = readError(file);
+    EXPECT_NE(
+        e.find("uncompress to " + std::to_string(DriverCloud::kPoints * DriverCloud::kPacked + 1) +
+               " bytes, but POINTS and its fields make " +
+               std::to_string(DriverCloud::kPoints * DriverCloud::kPacked)),
+        std::string::npos)
+        << e;
+
+    // A POINTS that no compressed body of this size holds is refused before anything is
+    // allocated for it.
+    {
+        std::ofstream f(file, std::ios::binary);
+        f << "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nPOINTS 300000000\nDATA binary_compressed\n";
+        f.write(good.data(), static_cast<std::streamsize>(good.size()));
+    }
+    e = readError(file);
+    EXPECT_NE(e.find("is truncated: POINTS says 300000000, more than " +
+                     std::to_string(good.size()) + " bytes of compressed data can hold"),
+              std::string::npos)
+        << e;
+
+    // A back-reference before the start of the output: LZF data that cannot be.
+    std::vector<char> corrupt = good;
+    corrupt[8] = static_cast<char>(0xE0);
+    corrupt[9] = static_cast<char>(0xFF);
+    corrupt[10] = static_cast<char>(0xFF);
+    DriverCloud::writeCompressed(file, corrupt);
+    e = readError(file);
+    EXPECT_NE(e.find("corrupt LZF data"), std::string::npos) << e;
+
+    std::ofstream(file) << "FIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F X\nPOINTS 1\n"
+                           "DATA ascii\n1 2 3 4\n";
+    e = readError(file);
+    EXPECT_NE(e.find("has a field intensity of TYPE X and SIZE 4, which is not a number"),
+              std::string::npos)
+        << e;
 }
 
 TEST(CloudWriter, CoordinatesWidenToFloat64WhereFloat32WouldLoseMillimetres)

@@ -1,15 +1,21 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file   ReadPcd.cpp
- * @brief  PCD reader (ASCII and binary) for the DynamicMap benchmark layout.
+ * @brief  PCD reader (ascii, binary and PCL's binary_compressed) for the DynamicMap benchmark
+ *         layout and the clouds other tools write.
  */
+#include <lzf.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
+#include "Scalars.h"
 #include "WidePoints.h"
 #include "hif/io/CloudFiles.h"
 #include "hif/io/FileError.h"
@@ -17,6 +23,47 @@
 
 namespace hif::io
 {
+namespace
+{
+/** The body of a `DATA binary_compressed` PCD (PCL's), which `f` is at, `data_bytes` long: two
+ *  little-endian uint32, the compressed and the uncompressed size, then that many bytes of
+ *  LZF data. Uncompressed, it must be `expected` bytes long. */
+std::vector<char> readCompressedBody(std::ifstream& f, const std::string& file,
+                                     std::size_t data_bytes, std::size_t expected)
+{
+    unsigned char sizes[8];
+    if (data_bytes < sizeof sizes || !f.read(reinterpret_cast<char*>(sizes), sizeof sizes))
+        throwFileError(file, "is truncated: its compressed data has no sizes");
+    const auto u32 = [&](int at)
+    {
+        return uint32_t{sizes[at]} | uint32_t{sizes[at + 1]} << 8 | uint32_t{sizes[at + 2]} << 16 |
+               uint32_t{sizes[at + 3]} << 24;
+    };
+    const uint32_t compressed = u32(0), uncompressed = u32(4);
+    if (uncompressed != expected)
+        throwFileError(file, "says its data uncompress to " + std::to_string(uncompressed) +
+                                 " bytes, but POINTS and its fields make " +
+                                 std::to_string(expected));
+    if (compressed > data_bytes - sizeof sizes)
+        throwFileError(file, "is truncated: " + std::to_string(compressed) +
+                                 " bytes of compressed data announced, " +
+                                 std::to_string(data_bytes - sizeof sizes) + " follow");
+    // A back-reference of LZF (three bytes) stands for 264 bytes at most.
+    if (uncompressed > 88.0 * compressed)
+        throwFileError(file, "has compressed data that cannot uncompress to " +
+                                 std::to_string(uncompressed) + " bytes (corrupt sizes)");
+    std::vector<char> packed(compressed);
+    if (!f.read(packed.data(), static_cast<std::streamsize>(packed.size())))
+        throwFileError(file, "is truncated in its compressed data");
+    std::vector<char> body(expected);
+    // lzf_decompress() checks its input's bounds: corrupt data gives 0 (or a short length).
+    if (expected > 0 &&
+        lzf_decompress(packed.data(), compressed, body.data(), uncompressed) != uncompressed)
+        throwFileError(file, "has compressed data that do not uncompress (corrupt LZF data)");
+    return body;
+}
+}  // namespace
+
 PcdCloud readPcd(const std::string& file)
 {
     std::ifstream f(file, std::ios::binary);
@@ -66,8 +113,9 @@ PcdCloud readPcd(const std::string& file)
         }
     }
     if (data.empty()) throwFileError(file, "has no DATA line: not a PCD file?");
-    if (data != "ascii" && data != "binary")
-        throwFileError(file, "has DATA " + data + ", which is not supported (use ascii or binary)");
+    if (data != "ascii" && data != "binary" && data != "binary_compressed")
+        throwFileError(
+            file, "has DATA " + data + ", which is not read (ascii, binary or binary_compressed)");
     if (!have_points) throwFileError(file, "has no POINTS line");
     if (counts.empty()) counts.assign(fields.size(), 1);
     if (sizes.size() != fields.size() || types.size() != fields.size() ||
@@ -90,10 +138,16 @@ PcdCloud readPcd(const std::string& file)
     int ix = -1, iy = -1, iz = -1, ii = -1;
     std::vector<std::size_t> offset(fields.size());
     std::size_t stride = 0, stride_values = 0;
+    // binary_compressed: each field's values for all points, one field after the other, at
+    // `packed[k]` times the points; padding fields ("_") left out.
+    std::vector<std::size_t> packed(fields.size());
+    std::size_t packed_stride = 0;
     for (std::size_t k = 0; k < fields.size(); ++k)
     {
         offset[k] = stride;
+        packed[k] = packed_stride;
         stride += static_cast<std::size_t>(sizes[k] * counts[k]);
+        if (fields[k] != "_") packed_stride += static_cast<std::size_t>(sizes[k] * counts[k]);
         stride_values += static_cast<std::size_t>(counts[k]);
         const int kk = static_cast<int>(k);
         if (fields[k] == "x") ix = kk;
@@ -106,20 +160,58 @@ PcdCloud readPcd(const std::string& file)
         if (types[k] != 'F' || (sizes[k] != 4 && sizes[k] != 8))
             throwFileError(file, "has a field " + fields[k] +
                                      " that is neither float32 nor float64 (TYPE F, SIZE 4 or 8)");
-    if (ii >= 0 && (types[ii] != 'F' || sizes[ii] != 4))
-        throwFileError(file, "has a field intensity that is not float32 (TYPE F, SIZE 4)");
+    // Intensity of any number type (some drivers write it as uint8 or uint16), as float32.
+    const Scalar intensity_type = ii >= 0 ? pcdScalar(types[ii], sizes[ii]) : Scalar::Float32;
+    if (intensity_type == Scalar::None)
+        throwFileError(file, std::string("has a field intensity of TYPE ") + types[ii] +
+                                 " and SIZE " + std::to_string(sizes[ii]) +
+                                 ", which is not a number (I, U or F)");
     const bool wide = sizes[ix] == 8 || sizes[iy] == 8 || sizes[iz] == 8;
-    // Binary points take `stride` bytes each; ascii ones at least two ("0\n").
-    const std::size_t min_bytes = data == "binary" ? stride : 2;
-    if (points > data_bytes / min_bytes)
-        throwFileError(file, "is truncated: POINTS says " + std::to_string(points) + ", but " +
-                                 std::to_string(data_bytes) + " bytes of data follow DATA");
+    if (data == "binary_compressed")
+    {
+        // Refused before allocating for them: the uncompressed size is a uint32, and LZF
+        // shrinks data 88 times at most (readCompressedBody()).
+        if (points > std::numeric_limits<uint32_t>::max() / packed_stride ||
+            static_cast<double>(points * packed_stride) > 88.0 * static_cast<double>(data_bytes))
+            throwFileError(file, "is truncated: POINTS says " + std::to_string(points) +
+                                     ", more than " + std::to_string(data_bytes) +
+                                     " bytes of compressed data can hold");
+    }
+    else
+    {
+        // Binary points take `stride` bytes each; ascii ones at least two ("0\n").
+        const std::size_t min_bytes = data == "binary" ? stride : 2;
+        if (points > data_bytes / min_bytes)
+            throwFileError(file, "is truncated: POINTS says " + std::to_string(points) + ", but " +
+                                     std::to_string(data_bytes) + " bytes of data follow DATA");
+    }
     out.x.resize(points);
     out.y.resize(points);
     out.z.resize(points);
     out.intensity.assign(points, 0.0f);
     WidePoints stored(out, wide);
-    if (data == "binary")
+    if (data == "binary_compressed")
+    {
+        const std::vector<char> body =
+            readCompressedBody(f, file, data_bytes, points * packed_stride);
+        // Field k's value of point p at packed[k] * points + p * (its size x count).
+        const auto at = [&](int k, std::size_t p)
+        {
+            const auto kk = static_cast<std::size_t>(k);
+            return body.data() + packed[kk] * points +
+                   p * static_cast<std::size_t>(sizes[kk] * counts[kk]);
+        };
+        const Scalar tx = pcdScalar('F', sizes[ix]), ty = pcdScalar('F', sizes[iy]),
+                     tz = pcdScalar('F', sizes[iz]);
+        for (std::size_t p = 0; p < points; ++p)
+        {
+            stored.store(p, binaryValue(at(ix, p), tx), binaryValue(at(iy, p), ty),
+                         binaryValue(at(iz, p), tz));
+            if (ii >= 0)
+                out.intensity[p] = static_cast<float>(binaryValue(at(ii, p), intensity_type));
+        }
+    }
+    else if (data == "binary")
     {
         // The body read in chunks of records, the fields picked out of each: a buffer of a
         // few pages rather than a second copy of the cloud.
@@ -127,6 +219,10 @@ PcdCloud readPcd(const std::string& file)
         std::vector<char> chunk(std::min(points, kChunkPoints) * stride);
         const std::size_t ox = offset[ix], oy = offset[iy], oz = offset[iz];
         const std::size_t oi = ii >= 0 ? offset[ii] : 0;
+        const auto intensity = [&](std::size_t p, const char* value)
+        {
+            if (ii >= 0) out.intensity[p] = static_cast<float>(binaryValue(value, intensity_type));
+        };
         const auto coord = [](const char* at, int size)
         {
             if (size == 8)
@@ -146,7 +242,7 @@ PcdCloud readPcd(const std::string& file)
                 throwFileError(file, "is truncated: POINTS says " + std::to_string(points) +
                                          ", found " + std::to_string(first + f.gcount() / stride));
             const char* rec = chunk.data();
-            if (!wide)
+            if (!wide && intensity_type == Scalar::Float32)
             {
                 // One pass over the records (the usual x y z intensity at 0, 4, 8, 12
                 // vectorizes).
@@ -160,11 +256,12 @@ PcdCloud readPcd(const std::string& file)
             }
             else
             {
+                // float64 coordinates (or an intensity other than float32).
                 for (std::size_t p = first; p < first + n; ++p, rec += stride)
                 {
                     stored.store(p, coord(rec + ox, sizes[ix]), coord(rec + oy, sizes[iy]),
                                  coord(rec + oz, sizes[iz]));
-                    if (ii >= 0) std::memcpy(&out.intensity[p], rec + oi, 4);
+                    intensity(p, rec + oi);
                 }
             }
         }

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "Scalars.h"
 #include "WidePoints.h"
 #include "hif/io/CloudFiles.h"
 #include "hif/io/FileError.h"
@@ -18,20 +19,7 @@ namespace hif::io
 {
 namespace
 {
-/** The PLY scalar types, and their names (two for each: PLY's first and its sized aliases). */
-enum class Scalar
-{
-    Int8,
-    Uint8,
-    Int16,
-    Uint16,
-    Int32,
-    Uint32,
-    Float32,
-    Float64,
-    None
-};
-
+/** A PLY scalar type from its name (two for each: PLY's first and its sized alias). */
 Scalar scalarOf(const std::string& t)
 {
     if (t == "char" || t == "int8") return Scalar::Int8;
@@ -43,59 +31,6 @@ Scalar scalarOf(const std::string& t)
     if (t == "float" || t == "float32") return Scalar::Float32;
     if (t == "double" || t == "float64") return Scalar::Float64;
     return Scalar::None;
-}
-
-std::size_t bytesOf(Scalar s)
-{
-    switch (s)
-    {
-        case Scalar::Int8:
-        case Scalar::Uint8:
-            return 1;
-        case Scalar::Int16:
-        case Scalar::Uint16:
-            return 2;
-        case Scalar::Int32:
-        case Scalar::Uint32:
-        case Scalar::Float32:
-            return 4;
-        case Scalar::Float64:
-            return 8;
-        case Scalar::None:
-            break;
-    }
-    return 0;
-}
-
-/** A binary little-endian value of type `s` at `at`, as a double. */
-double binaryValue(const char* at, Scalar s)
-{
-    const auto get = [at](auto v)
-    {
-        std::memcpy(&v, at, sizeof v);
-        return static_cast<double>(v);
-    };
-    switch (s)
-    {
-        case Scalar::Int8:
-            return get(int8_t{});
-        case Scalar::Uint8:
-            return get(uint8_t{});
-        case Scalar::Int16:
-            return get(int16_t{});
-        case Scalar::Uint16:
-            return get(uint16_t{});
-        case Scalar::Int32:
-            return get(int32_t{});
-        case Scalar::Uint32:
-            return get(uint32_t{});
-        case Scalar::Float32:
-            return get(float{});
-        case Scalar::Float64:
-        case Scalar::None:
-            break;
-    }
-    return get(double{});
 }
 
 struct Property
