@@ -31,7 +31,9 @@ struct Cli
         "writes), a .simplemap, a KITTI sequence folder (velodyne/, poses.txt, calib.txt; "
         "SemanticKITTI layout), a DynamicMap benchmark folder (pcd/NNNNNN.pcd), or a folder of "
         "clouds in the sensor frame (NNNNNN.pcd or NNNNNN.ply) with poses.txt (the sensor's "
-        "pose in the world for each, KITTI or TUM format), as LiDAR SLAM systems write them",
+        "pose in the world for each, KITTI or TUM format), as LiDAR SLAM systems write them; "
+        "clouds named by their time (1317022176.580342102.pcd, as a bag exported cloud by "
+        "cloud) take the pose of their time in a TUM trajectory",
         true,
         "",
         "in.rawlog|in.simplemap|folder",
@@ -41,7 +43,9 @@ struct Cli
         "poses",
         "The trajectory of a folder of clouds (-i), when it is not the folder's poses.txt: "
         "one line per cloud, the sensor's pose in the world, KITTI format (a 3x4 matrix, 12 "
-        "numbers) or TUM format (time x y z qx qy qz qw); e.g. KISS-ICP's *_poses_kitti.txt",
+        "numbers) or TUM format (time x y z qx qy qz qw); e.g. KISS-ICP's *_poses_kitti.txt. "
+        "Clouds named by their time take the TUM pose of that time, or one interpolated "
+        "between the two around it (at most twice the trajectory's median spacing apart)",
         false,
         "",
         "poses.txt",

@@ -3,7 +3,8 @@
  * @file   test_slam_folders.cpp
  * @brief  The inputs LiDAR SLAM systems write: a folder of per-scan clouds in the sensor frame
  *         (.pcd, PCL's compressed .pcd too, or .ply) with a KITTI- or TUM-format trajectory
- *         give the KITTI folder's classes;
+ *         give the KITTI folder's classes, and so do clouds named by their time with a TUM
+ *         trajectory;
  *         poses that do not belong to the scans are warned about; a single cloud is named.
  */
 #include <gtest/gtest.h>
@@ -221,6 +222,83 @@ TEST(SlamFolders, CloudsWithTheirPosesGiveTheKittiFoldersClasses)
     const auto kept = hif::io::readLabels(w + "/tum_out/predictions/000003.label");
     EXPECT_EQ(per_scan[3],
               std::size_t(std::count(kept.begin(), kept.end(), hif::io::kLabelStatic)));
+}
+
+// A bag exported cloud by cloud (pcl_ros's bag_to_pcd: <seconds>.<nanoseconds>.pcd) with the
+// SLAM system's TUM trajectory: each cloud takes the pose of its time and its predictions its
+// name, and the classes are the KITTI folder's. A cloud the trajectory has no pose for is left
+// out and named; a trajectory without times cannot pose clouds named by time.
+TEST(SlamFolders, CloudsNamedByTheirTimeTakeTheTrajectorysPoseOfThatTime)
+{
+    const std::string dir = hif::test::kittiRoot() + "/sequences/04";
+    HIF_REQUIRE_KITTI_SEQUENCE(dir);
+    const WorkDir work = workDir("slam_timed_" + std::to_string(getpid()));
+    const std::string& w = work.path();
+    const hif::io::KittiSequence seq(dir);
+    const auto poses = lidarPoses(seq);
+    constexpr double kStart = 1317022176.0;  // the recording's clock, not the sequence's
+    const auto stamp = [&](std::size_t i)
+    {
+        char name[64];
+        std::snprintf(name, sizeof name, "%.9f", kStart + seq.time(i));
+        return std::string(name);
+    };
+    fs::create_directories(w + "/bag");
+    std::ofstream tum(w + "/trajectory.txt");
+    tum << std::setprecision(21);
+    for (std::size_t i = 0; i < seq.size(); ++i)
+    {
+        const hif::io::Cloud c = seq.readScan(i);
+        hif::io::CloudWriter cw({w + "/bag/" + stamp(i) + ".pcd"});
+        for (std::size_t k = 0; k < c.size(); ++k) cw.add(c.x[k], c.y[k], c.z[k], c.intensity[k]);
+        cw.close();
+        const Eigen::Quaterniond q(poses[i].linear());
+        const Eigen::Vector3d& t = poses[i].translation();
+        tum << stamp(i) << ' ' << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x() << ' '
+            << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
+    }
+    tum.close();
+
+    Result r = clean(w + "/bag", w + "/bag_out", w + "/trajectory.txt");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
+    r = clean(dir, w + "/kitti_out");
+    ASSERT_EQ(r.code, 0) << r.output;
+    // Poses through a quaternion: a point on a cell's border may change sides, hardly more.
+    std::size_t differ = 0, points = 0;
+    for (std::size_t i = 0; i < seq.size(); ++i)
+    {
+        const auto ref =
+            hif::io::readLabels(w + "/kitti_out/predictions/" + hif::io::frameName(i) + ".label");
+        const auto got = hif::io::readLabels(w + "/bag_out/predictions/" + stamp(i) + ".label");
+        ASSERT_EQ(got.size(), ref.size()) << i;
+        for (std::size_t k = 0; k < ref.size(); ++k) differ += got[k] != ref[k];
+        points += ref.size();
+    }
+    EXPECT_LE(differ, points / 100000) << differ << " of " << points;
+
+    // The trajectory starts after the first cloud: that cloud is left out, by name.
+    {
+        std::ifstream in(w + "/trajectory.txt");
+        std::ofstream out(w + "/late.txt");
+        std::string line;
+        std::getline(in, line);  // the first pose
+        for (; std::getline(in, line);) out << line << '\n';
+    }
+    r = clean(w + "/bag", w + "/late_out", w + "/late.txt");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("1 of the " + std::to_string(seq.size()) + " clouds of '" + w +
+                            "/bag' have no pose in '" + w + "/late.txt'"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("left out: " + stamp(0) + ".pcd"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(w + "/late_out/predictions/" + stamp(0) + ".label"));
+    EXPECT_TRUE(fs::exists(w + "/late_out/predictions/" + stamp(1) + ".label"));
+
+    writeKittiPoses(poses, w + "/kitti_format.txt");
+    expectError(clean(w + "/bag", w + "/kitti_format_out", w + "/kitti_format.txt"),
+                "holds clouds named by their time (" + stamp(0) +
+                    ".pcd), which need a trajectory with times");
 }
 
 TEST(SlamFolders, PosesThatDoNotBelongToTheScansAreWarnedAboutAtTheStart)

@@ -189,3 +189,41 @@ TEST(Trajectory, KittiAndTumFilesGiveTheSamePoses)
                     "missing.txt' cannot be opened");
     std::filesystem::remove_all(d);
 }
+
+// A scan's pose by its time: the pose of that time (to kSameTime), else the two around it
+// interpolated (position linearly, rotation by slerp: a quarter turn half-way is an eighth),
+// never across a gap wider than asked, nor before the first pose or after the last.
+TEST(Trajectory, APoseAtATimeIsThePoseThenOrTheTwoAroundItInterpolated)
+{
+    hif::io::Trajectory tr;
+    tr.format = hif::io::Trajectory::Format::Tum;
+    Eigen::Isometry3d a = Eigen::Isometry3d::Identity(), b = a, c = a;
+    b.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    b.translation() = Eigen::Vector3d(2, 0, 0);
+    c.translation() = Eigen::Vector3d(2, 4, 0);
+    tr.poses = {a, b, c};
+    tr.times = {100.0, 100.1, 100.6};  // a gap of 0.5 s after the second
+    EXPECT_DOUBLE_EQ(hif::io::medianSpacing(tr), 0.5);
+
+    const auto exact = hif::io::poseAt(tr, 100.1 + 0.5 * hif::io::kSameTime, 0.2);
+    ASSERT_TRUE(exact);
+    EXPECT_TRUE(exact->isApprox(b, 1e-15));
+    const auto mid = hif::io::poseAt(tr, 100.05, 0.2);
+    ASSERT_TRUE(mid);
+    EXPECT_TRUE(mid->translation().isApprox(Eigen::Vector3d(1, 0, 0), 1e-9));
+    const Eigen::AngleAxisd turn(mid->linear());
+    EXPECT_NEAR(turn.angle(), M_PI / 4, 1e-9);
+    EXPECT_NEAR(turn.axis().z(), 1.0, 1e-9);
+    // The gap: bridged only when wide enough is allowed.
+    EXPECT_FALSE(hif::io::poseAt(tr, 100.3, 0.2));
+    const auto bridged = hif::io::poseAt(tr, 100.35, 0.5);
+    ASSERT_TRUE(bridged);
+    EXPECT_TRUE(bridged->translation().isApprox(Eigen::Vector3d(2, 2, 0), 1e-9));
+    // Outside the trajectory, and a trajectory without times.
+    EXPECT_FALSE(hif::io::poseAt(tr, 99.9, 10.0));
+    EXPECT_FALSE(hif::io::poseAt(tr, 100.7, 10.0));
+    EXPECT_TRUE(hif::io::poseAt(tr, 100.6, 0.0));  // the last pose itself
+    tr.times.clear();
+    EXPECT_FALSE(hif::io::poseAt(tr, 100.0, 10.0));
+    EXPECT_EQ(hif::io::medianSpacing(tr), 0.0);
+}

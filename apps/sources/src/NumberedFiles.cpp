@@ -41,6 +41,42 @@ NumberedFiles numberedFiles(const std::string& folder, const std::vector<std::st
     return out;
 }
 
+TimedFiles timedFiles(const std::string& folder, const std::vector<std::string>& extensions)
+{
+    TimedFiles out;
+    const auto digits = [](const std::string& s)
+    {
+        return !s.empty() &&
+               std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); });
+    };
+    for (const auto& e : fs::directory_iterator(folder))
+    {
+        const std::string ext = e.path().extension().string();
+        if (!e.is_regular_file() ||
+            std::find(extensions.begin(), extensions.end(), ext) == extensions.end())
+            continue;
+        const std::string stem = e.path().stem().string();
+        const auto dot = stem.find('.');
+        double seconds = 0.0;
+        if (dot != std::string::npos && digits(stem.substr(0, dot)) && digits(stem.substr(dot + 1)))
+            seconds = std::stod(stem);  // seconds.fraction
+        else if (stem.size() == 19 && digits(stem))
+            // Nanoseconds: whole seconds and the rest apart, so that no digit is lost to the
+            // double before the point.
+            seconds = double(std::stoull(stem.substr(0, 10))) + 1e-9 * std::stod(stem.substr(10));
+        else
+            continue;
+        out.files.emplace_back(seconds, e.path().string());
+    }
+    std::sort(out.files.begin(), out.files.end());
+    for (std::size_t k = 1; k < out.files.size(); ++k)
+        if (out.files[k].first == out.files[k - 1].first)
+            throw std::runtime_error("'" + folder + "' holds two clouds of one time: " +
+                                     fs::path(out.files[k - 1].second).filename().string() +
+                                     " and " + fs::path(out.files[k].second).filename().string());
+    return out;
+}
+
 std::string listNames(const std::vector<std::string>& names)
 {
     std::string s;

@@ -2,7 +2,7 @@
 /**
  * @file   NumberedFiles.h
  * @brief  The scans of a folder: the files named by their number (NNNNNN.pcd, 42.ply), as the
- *         DynamicMap benchmark and LiDAR SLAM systems write them.
+ *         DynamicMap benchmark and LiDAR SLAM systems write them, or by their time.
  */
 #pragma once
 
@@ -27,6 +27,19 @@ struct NumberedFiles
  *  folder when two files have one number (000001.pcd and 1.pcd). */
 [[nodiscard]] NumberedFiles numberedFiles(const std::string& folder,
                                           const std::vector<std::string>& extensions);
+
+/** A folder's clouds named by their time: (seconds, path), in time order. */
+struct TimedFiles
+{
+    std::vector<std::pair<double, std::string>> files;
+};
+
+/** The regular files of `folder` with one of `extensions` whose stem is a time: seconds with a
+ *  fraction (1317022176.580342102.pcd, as pcl_ros's bag_to_pcd names them) or nanoseconds, 19
+ *  digits (1317022176580342102.pcd). Throws std::runtime_error naming the folder when two files
+ *  have one time. */
+[[nodiscard]] TimedFiles timedFiles(const std::string& folder,
+                                    const std::vector<std::string>& extensions);
 
 /** Up to five names, and how many more: "a, b, c, d, e and 3 more". */
 [[nodiscard]] std::string listNames(const std::vector<std::string>& names);

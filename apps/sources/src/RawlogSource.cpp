@@ -93,7 +93,8 @@ public:
                 continue;
             }
             if (!have_pose_ && poses_required_) throwNoPose();
-            out = {obs, have_pose_ ? pose_ : mrpt::poses::CPose3D(), frame_, have_pose_};
+            out = {obs, have_pose_ ? pose_ : mrpt::poses::CPose3D(), frame_, have_pose_,
+                   std::nullopt};
             have_pose_ = false;  // every scan needs its own pose: never reuse a stale one
             frame_.reset();      // and its own number
             return counted(true, out);

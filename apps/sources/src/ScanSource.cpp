@@ -176,7 +176,7 @@ bool FrameScans::next(Scan& out)
         if (!obs) continue;
         if (isScan(*obs))
         {
-            out = {obs, pose_, std::nullopt, has_pose_};
+            out = {obs, pose_, std::nullopt, has_pose_, std::nullopt};
             return true;
         }
         if (IS_CLASS(*obs, mrpt::obs::CObservationRobotPose))

@@ -3,10 +3,14 @@
  * @file   ScansWithPosesSource.cpp
  * @brief  Scans as LiDAR SLAM systems write them: a folder of per-scan clouds in the sensor
  *         frame (NNNNNN.pcd or NNNNNN.ply) and a trajectory file (KITTI or TUM format) with the
- *         sensor's pose in the world for each.
+ *         sensor's pose in the world for each; or clouds named by their time (a bag exported
+ *         cloud by cloud) with a TUM trajectory, posed by time.
  */
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
+#include <iterator>
+#include <optional>
 #include <stdexcept>
 
 #include "NumberedFiles.h"
@@ -35,58 +39,60 @@ public:
                            [&](const std::string& name)
                            { return fs::equivalent(fs::path(folder) / name, poses_file, ec); }),
             found.other.end());
-        if (found.files.empty())
-            throw std::runtime_error(
-                "'" + folder +
-                "' has no scan (clouds named by their number: NNNNNN.pcd or NNNNNN.ply)" +
-                (found.other.empty() ? "" : "; it holds " + listNames(found.other)));
-        files_ = std::move(found.files);
-        for (const auto& [number, file] : files_)
-            if (fs::path(file).extension() != fs::path(files_.front().second).extension())
-                throw std::runtime_error("'" + folder + "' holds both .pcd and .ply scans (" +
-                                         fs::path(files_.front().second).filename().string() +
-                                         ", " + fs::path(file).filename().string() +
-                                         "): which are the scans?");
-        // One pose a scan, in order; a trajectory longer than the folder (scans left out, as
-        // KITTI's poses.txt for a part of a sequence) is read by the scans' numbers.
-        by_number_ = trajectory_.size() != files_.size();
-        const std::size_t n = trajectory_.size();
-        if (by_number_)
+        // One kind of cloud: .pcd and .ply beside each other leave which are the scans open.
+        const auto oneKind = [&](const auto& files)
         {
-            if (n < files_.size())
-                throw std::runtime_error("'" + poses_file + "' has " + std::to_string(n) +
-                                         " poses for the " + std::to_string(files_.size()) +
-                                         " scans of '" + folder +
-                                         "' (one pose a scan, in the order of their numbers)");
-            for (const auto& [number, file] : files_)
-                if (number >= n)
-                    throw std::runtime_error("'" + poses_file + "' has " + std::to_string(n) +
-                                             " poses for the " + std::to_string(files_.size()) +
-                                             " scans of '" + folder + "', and none for " +
-                                             fs::path(file).filename().string() +
-                                             " (pose lines are read by the scan's "
-                                             "number when there are more poses than scans)");
-            warnings_.push_back("'" + poses_file + "' has " + std::to_string(n) + " poses for " +
-                                std::to_string(files_.size()) +
-                                " scans: scan NNNNNN takes pose line NNNNNN+1");
+            const fs::path first = files.front().second;
+            for (const auto& f : files)
+                if (fs::path(f.second).extension() != first.extension())
+                    throw std::runtime_error("'" + folder + "' holds both .pcd and .ply scans (" +
+                                             first.filename().string() + ", " +
+                                             fs::path(f.second).filename().string() +
+                                             "): which are the scans?");
+        };
+        if (!found.files.empty())
+        {
+            oneKind(found.files);
+            byNumber(folder, found.files);
+        }
+        else
+        {
+            // Clouds named by their time (a bag exported with pcl_ros's bag_to_pcd), posed by
+            // the trajectory's times.
+            const TimedFiles timed = timedFiles(folder, {".pcd", ".ply"});
+            if (timed.files.empty())
+                throw std::runtime_error(
+                    "'" + folder +
+                    "' has no scan (clouds named by their number, NNNNNN.pcd or NNNNNN.ply, or "
+                    "by their time, 1317022176.580342102.pcd)" +
+                    (found.other.empty() ? "" : "; it holds " + listNames(found.other)));
+            oneKind(timed.files);
+            byTime(folder, timed.files);
+            std::vector<std::string> timed_names;
+            for (const auto& [time, file] : timed.files)
+                timed_names.push_back(fs::path(file).filename().string());
+            std::sort(timed_names.begin(), timed_names.end());
+            std::vector<std::string> rest;
+            std::set_difference(found.other.begin(), found.other.end(), timed_names.begin(),
+                                timed_names.end(), std::back_inserter(rest));
+            found.other = std::move(rest);
         }
         if (!found.other.empty())
-            warnings_.push_back(
-                "'" + folder + "' holds " + std::to_string(found.other.size()) +
-                " file(s) not named as scans (NNNNNN.pcd or NNNNNN.ply), left out: " +
-                listNames(found.other));
+            warnings_.push_back("'" + folder + "' holds " + std::to_string(found.other.size()) +
+                                " file(s) not named as scans (NNNNNN.pcd or NNNNNN.ply, or by "
+                                "their time), left out: " +
+                                listNames(found.other));
     }
 
     bool next(Scan& out) override
     {
-        if (pos_ >= files_.size()) return false;
-        const std::size_t k = pos_++;
-        const auto& [number, file] = files_[k];
+        if (pos_ >= entries_.size()) return false;
+        const Entry& e = entries_[pos_++];
         io::PcdCloud cloud =
-            fs::path(file).extension() == ".pcd" ? io::readPcd(file) : io::readPly(file);
+            fs::path(e.file).extension() == ".pcd" ? io::readPcd(e.file) : io::readPly(e.file);
         if (cloud.has_viewpoint && !cloud.viewpoint.isApprox(Eigen::Isometry3d::Identity()))
             throw std::runtime_error(
-                "'" + file +
+                "'" + e.file +
                 "' has a VIEWPOINT other than the identity: its points may be in the world "
                 "frame (a DynamicMap scan, read from a folder with pcd/), but a folder with "
                 "poses holds clouds in the sensor frame");
@@ -98,28 +104,117 @@ public:
                 cloud.y[i] = static_cast<float>(p.y());
                 cloud.z[i] = static_cast<float>(p.z());
             }
-        const std::size_t row = by_number_ ? number : k;
         out.obs = pointCloudObservation(cloud);
-        if (!trajectory_.times.empty())
-            out.obs->timestamp = mrpt::Clock::fromDouble(trajectory_.times[row]);
-        out.robot_pose =
-            mrpt::poses::CPose3D::FromHomogeneousMatrix(trajectory_.poses[row].matrix());
-        out.frame = number;
+        if (e.time) out.obs->timestamp = mrpt::Clock::fromDouble(*e.time);
+        out.robot_pose = mrpt::poses::CPose3D::FromHomogeneousMatrix(e.pose.matrix());
+        out.frame = e.frame;
+        out.name = e.name;
         out.has_pose = true;
         return true;
     }
 
     void rewind() override { pos_ = 0; }
-    [[nodiscard]] std::size_t knownSize() const override { return files_.size(); }
+    [[nodiscard]] std::size_t knownSize() const override { return entries_.size(); }
     [[nodiscard]] std::vector<std::string> warnings() const override { return warnings_; }
 
 private:
+    /** A scan: its cloud, pose and time (when the trajectory has times), its number, and the
+     *  name of its outputs when it is not that number's. */
+    struct Entry
+    {
+        std::size_t frame;
+        std::string file;
+        Eigen::Isometry3d pose;
+        std::optional<double> time;
+        std::optional<std::string> name;
+    };
+
+    /** Clouds named by their number: one pose a scan, in order; a trajectory longer than the
+     *  folder (scans left out, as KITTI's poses.txt for a part of a sequence) is read by the
+     *  scans' numbers. */
+    void byNumber(const std::string& folder,
+                  const std::vector<std::pair<std::size_t, std::string>>& files)
+    {
+        const bool by_number = trajectory_.size() != files.size();
+        const std::size_t n = trajectory_.size();
+        if (by_number)
+        {
+            if (n < files.size())
+                throw std::runtime_error("'" + poses_file_ + "' has " + std::to_string(n) +
+                                         " poses for the " + std::to_string(files.size()) +
+                                         " scans of '" + folder +
+                                         "' (one pose a scan, in the order of their numbers)");
+            for (const auto& [number, file] : files)
+                if (number >= n)
+                    throw std::runtime_error("'" + poses_file_ + "' has " + std::to_string(n) +
+                                             " poses for the " + std::to_string(files.size()) +
+                                             " scans of '" + folder + "', and none for " +
+                                             fs::path(file).filename().string() +
+                                             " (pose lines are read by the scan's "
+                                             "number when there are more poses than scans)");
+            warnings_.push_back("'" + poses_file_ + "' has " + std::to_string(n) + " poses for " +
+                                std::to_string(files.size()) +
+                                " scans: scan NNNNNN takes pose line NNNNNN+1");
+        }
+        for (std::size_t k = 0; k < files.size(); ++k)
+        {
+            const auto& [number, file] = files[k];
+            const std::size_t row = by_number ? number : k;
+            std::optional<double> time;
+            if (!trajectory_.times.empty()) time = trajectory_.times[row];
+            entries_.push_back({number, file, trajectory_.poses[row], time, std::nullopt});
+        }
+    }
+
+    /** Clouds named by their time: each takes the trajectory's pose at that time (io::poseAt():
+     *  the pose of that time, else interpolated between the two around it when they are at most
+     *  twice the trajectory's median spacing apart: a gap in it is not bridged). Its outputs
+     *  take its name; those without a pose are left out, and named. */
+    void byTime(const std::string& folder, const std::vector<std::pair<double, std::string>>& files)
+    {
+        const std::string first = fs::path(files.front().second).filename().string();
+        if (trajectory_.times.empty())
+            throw std::runtime_error("'" + folder + "' holds clouds named by their time (" + first +
+                                     "), which need a trajectory with times, the TUM format "
+                                     "(time x y z qx qy qz qw), but '" +
+                                     poses_file_ + "' is in the KITTI format");
+        const double spacing = io::medianSpacing(trajectory_);
+        std::vector<std::string> left_out;
+        for (const auto& [time, file] : files)
+        {
+            const auto pose = io::poseAt(trajectory_, time, 2.0 * spacing);
+            if (!pose)
+            {
+                left_out.push_back(fs::path(file).filename().string());
+                continue;
+            }
+            entries_.push_back(
+                {entries_.size(), file, *pose, time, fs::path(file).stem().string()});
+        }
+        char span[160];
+        std::snprintf(span, sizeof span,
+                      "its poses run from %.6f to %.6f s, %.3f s apart (median), the clouds' from "
+                      "%.6f to %.6f s",
+                      trajectory_.times.front(), trajectory_.times.back(), spacing,
+                      files.front().first, files.back().first);
+        if (entries_.empty())
+            throw std::runtime_error("none of the " + std::to_string(files.size()) +
+                                     " clouds of '" + folder + "' has a pose in '" + poses_file_ +
+                                     "': " + span);
+        if (!left_out.empty())
+            warnings_.push_back(std::to_string(left_out.size()) + " of the " +
+                                std::to_string(files.size()) + " clouds of '" + folder +
+                                "' have no pose in '" + poses_file_ +
+                                "' (before its first pose, after its last, or in a gap of more "
+                                "than twice its spacing; " +
+                                span + "), left out: " + listNames(left_out));
+    }
+
     std::string poses_file_;
     io::Trajectory trajectory_;
-    std::vector<std::pair<std::size_t, std::string>> files_;
-    bool by_number_ = false;  ///< scan NNNNNN takes pose line NNNNNN (else the k-th scan the k-th)
+    std::vector<Entry> entries_;
     std::vector<std::string> warnings_;
-    std::size_t pos_ = 0;  ///< next file
+    std::size_t pos_ = 0;  ///< next entry
 };
 }  // namespace
 

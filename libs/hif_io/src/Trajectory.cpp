@@ -5,6 +5,7 @@
  */
 #include "hif/io/Trajectory.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -90,6 +91,38 @@ Trajectory readTrajectory(const std::string& file)
     }
     if (out.poses.empty()) throwFileError(file, "holds no pose");
     return out;
+}
+
+std::optional<Eigen::Isometry3d> poseAt(const Trajectory& tr, double t, double max_gap)
+{
+    const std::vector<double>& times = tr.times;
+    if (times.empty() || !std::isfinite(t)) return std::nullopt;
+    // The first pose after t - kSameTime: the pose at t, or the one after it.
+    const auto after = std::upper_bound(times.begin(), times.end(), t - kSameTime);
+    if (after == times.end()) return std::nullopt;  // after the last pose
+    const auto k = static_cast<std::size_t>(after - times.begin());
+    if (std::abs(times[k] - t) <= kSameTime) return tr.poses[k];
+    if (k == 0 || times[k] - times[k - 1] > max_gap) return std::nullopt;  // before, or a gap
+    const double s = (t - times[k - 1]) / (times[k] - times[k - 1]);
+    const Eigen::Isometry3d& a = tr.poses[k - 1];
+    const Eigen::Isometry3d& b = tr.poses[k];
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = Eigen::Quaterniond(a.linear())
+                        .slerp(s, Eigen::Quaterniond(b.linear()))
+                        .normalized()
+                        .toRotationMatrix();
+    pose.translation() = (1.0 - s) * a.translation() + s * b.translation();
+    return pose;
+}
+
+double medianSpacing(const Trajectory& tr)
+{
+    if (tr.times.size() < 2) return 0.0;
+    std::vector<double> gaps(tr.times.size() - 1);
+    for (std::size_t k = 1; k < tr.times.size(); ++k) gaps[k - 1] = tr.times[k] - tr.times[k - 1];
+    const auto mid = gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2);
+    std::nth_element(gaps.begin(), mid, gaps.end());
+    return *mid;
 }
 
 }  // namespace hif::io

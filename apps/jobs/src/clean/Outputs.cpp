@@ -141,7 +141,8 @@ void Outputs::write(const hif::apps::Scan& scan, const std::vector<uint8_t>& dyn
         throw std::runtime_error("two scans of the input are frame " + std::to_string(frame));
     if (frame >= written_.size()) written_.resize(frame + 1, false);
     written_[frame] = true;
-    hif::io::writeLabels(pred_dir_ + "/" + hif::io::frameName(frame) + ".label", labels);
+    hif::io::writeLabels(
+        pred_dir_ + "/" + (scan.name ? *scan.name : hif::io::frameName(frame)) + ".label", labels);
     write_ms_total += msSince(t1);
     points_in += dyn.size();
     points_kept += st.static_points;

@@ -37,6 +37,9 @@ struct Scan
     /** False for a scan of a rawlog opened with poses optional that had none before it
      *  (robot_pose is then the identity). */
     bool has_pose = true;
+    /** The name of its outputs (predictions/<name>.label) where the input names its scans by
+     *  something else than their number (clouds named by their time); else the frame's. */
+    std::optional<std::string> name;
 };
 
 /** Work done on each scan on the reader thread, right after reading it. */

@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,20 @@ struct Trajectory
                                        : "TUM (time x y z qx qy qz qw a line)";
     }
 };
+
+/** Times closer than this are one time, seconds: a scan's time and its pose's, each printed by
+ *  its own tool (to the microsecond, or the nanosecond through a double). */
+constexpr double kSameTime = 1e-4;
+
+/** The pose of a TUM trajectory `tr` (times increasing) at time `t`: the pose at that time
+ *  (within kSameTime), else interpolated between the poses around it (position linearly,
+ *  rotation by slerp) when they are at most `max_gap` seconds apart; none before the first
+ *  pose, after the last, within a wider gap, or without times (the KITTI format). */
+[[nodiscard]] std::optional<Eigen::Isometry3d> poseAt(const Trajectory& tr, double t,
+                                                      double max_gap);
+
+/** The median time between consecutive poses of `tr` (0 for fewer than two, or no times). */
+[[nodiscard]] double medianSpacing(const Trajectory& tr);
 
 /** Reads `file`, its format told by its first pose line (12 or 8 numbers); empty lines and
  *  lines starting with '#' are skipped. Every pose is checked as KittiSequence checks poses.txt
