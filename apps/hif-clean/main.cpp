@@ -50,6 +50,17 @@ struct Cli
         "",
         "poses.txt",
         cmd};
+    TCLAP::ValueArg<std::string> extrinsic{
+        "",
+        "extrinsic",
+        "With a folder of clouds: the LiDAR's pose in the frame of the trajectory's poses, when "
+        "they are another sensor's (the IMU of a LiDAR-inertial SLAM system such as FAST-LIO or "
+        "LIO-SAM): \"x y z qx qy qz qw\" or the 3x4 matrix row by row (12 numbers); each "
+        "scan is then at pose x extrinsic (default: the poses are the LiDAR's)",
+        false,
+        "",
+        "\"x y z qx qy qz qw\"",
+        cmd};
     TCLAP::ValueArg<std::string> output{
         "o", "output", "Output folder (created if needed)", true, "", "folder", cmd};
     TCLAP::ValueArg<std::string> config{
@@ -180,6 +191,7 @@ int run(Cli& cli)
     hif::jobs::CleanOptions o;
     o.input = cli.input.getValue();
     o.poses = cli.poses.getValue();
+    o.extrinsic = cli.extrinsic.getValue();
     o.output = cli.output.getValue();
     if (cli.config.isSet()) o.config = cli.config.getValue();
     o.section = cli.section.getValue();

@@ -4,7 +4,7 @@
  * @brief  The inputs LiDAR SLAM systems write: a folder of per-scan clouds in the sensor frame
  *         (.pcd, PCL's compressed .pcd too, or .ply) with a KITTI- or TUM-format trajectory
  *         give the KITTI folder's classes, and so do clouds named by their time with a TUM
- *         trajectory;
+ *         trajectory, and clouds with an IMU's trajectory and the LiDAR's extrinsic;
  *         poses that do not belong to the scans are warned about; a single cloud is named.
  */
 #include <gtest/gtest.h>
@@ -299,6 +299,67 @@ TEST(SlamFolders, CloudsNamedByTheirTimeTakeTheTrajectorysPoseOfThatTime)
     expectError(clean(w + "/bag", w + "/kitti_format_out", w + "/kitti_format.txt"),
                 "holds clouds named by their time (" + stamp(0) +
                     ".pcd), which need a trajectory with times");
+}
+
+// A LiDAR-inertial SLAM system (FAST-LIO, LIO-SAM) writes the IMU's trajectory: with the
+// LiDAR's pose in the IMU's frame (--extrinsic), the clouds get the KITTI folder's classes;
+// --extrinsic is refused where the input holds its own poses, and a wrong one is named.
+TEST(SlamFolders, AnExtrinsicPutsTheLidarWhereAnImusTrajectorySays)
+{
+    const std::string dir = hif::test::kittiRoot() + "/sequences/04";
+    HIF_REQUIRE_KITTI_SEQUENCE(dir);
+    const WorkDir work = workDir("slam_extrinsic_" + std::to_string(getpid()));
+    const std::string& w = work.path();
+    const hif::io::KittiSequence seq(dir);
+    writeScans(seq, w + "/scans", ".pcd");
+    // The LiDAR a quarter turn about z from the IMU, 0.3 m ahead, 0.1 m right, 0.2 m up.
+    Eigen::Isometry3d extrinsic = Eigen::Isometry3d::Identity();
+    extrinsic.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    extrinsic.translation() = Eigen::Vector3d(0.3, -0.1, 0.2);
+    const std::string text = "0.3 -0.1 0.2 0 0 0.70710678118654752 0.70710678118654752";
+    std::vector<Eigen::Isometry3d> imu;
+    for (const Eigen::Isometry3d& lidar : lidarPoses(seq))
+        imu.push_back(lidar * extrinsic.inverse());
+    writeKittiPoses(imu, w + "/imu_poses.txt");
+
+    Result r = clean(dir, w + "/kitti_out");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto reference = predictions(w + "/kitti_out", seq.size());
+    const auto withExtrinsic = [&](const std::string& input, const std::string& out,
+                                   const std::string& poses, const std::string& e)
+    {
+        return hif::test::clean(input, out,
+                                [&](hif::jobs::CleanOptions& o)
+                                {
+                                    o.picture = false;
+                                    o.poses = poses;
+                                    o.extrinsic = e;
+                                });
+    };
+    r = withExtrinsic(w + "/scans", w + "/imu_out", w + "/imu_poses.txt", text);
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find(", the LiDAR at (0.3 -0.1 0.2 0 0 0.707107 0.707107) in their frame"),
+              std::string::npos)
+        << r.output;
+    const auto got = predictions(w + "/imu_out", seq.size());
+    ASSERT_EQ(got.size(), reference.size());
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < got.size(); ++i) differ += got[i] != reference[i];
+    // The quaternion's 17 digits: a point on a cell's border may change sides, hardly more.
+    EXPECT_LE(differ, reference.size() / 100000) << differ << " of " << reference.size();
+    // Without it, the IMU's poses put the clouds elsewhere: not the same classes.
+    r = clean(w + "/scans", w + "/no_extrinsic_out", w + "/imu_poses.txt");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(predictions(w + "/no_extrinsic_out", seq.size()), reference);
+
+    expectError(withExtrinsic(dir, w + "/o1", "", text),
+                "--extrinsic is for a folder of clouds; '" + dir + "' is a KITTI sequence folder");
+    expectError(withExtrinsic(w + "/scans", w + "/o2", w + "/imu_poses.txt", "0.3 -0.1 0.2"),
+                "'--extrinsic' '0.3 -0.1 0.2': expected 7 numbers (x y z qx qy qz qw) or 12");
+    expectError(withExtrinsic(w + "/scans", w + "/o3", w + "/imu_poses.txt", "0 0 0 0 0 0 2"),
+                "'--extrinsic' '0 0 0 0 0 0 2': the quaternion (qx qy qz qw) has norm 2");
+    expectError(withExtrinsic(w + "/scans", w + "/o4", w + "/imu_poses.txt", "0 0 x 0 0 0 1"),
+                "number 3 of 7, 'x', is not a number");
 }
 
 TEST(SlamFolders, PosesThatDoNotBelongToTheScansAreWarnedAboutAtTheStart)

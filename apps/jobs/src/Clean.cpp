@@ -27,6 +27,7 @@
 #include "hif/apps/RunFiles.h"
 #include "hif/apps/ScanSource.h"
 #include "hif/apps/Staged.h"
+#include "hif/io/Trajectory.h"
 
 namespace fs = std::filesystem;
 
@@ -46,7 +47,8 @@ std::string defaultConfig(bool online, bool dynamicmap)
 /** What a run works with: its input, its maps and where its results go. */
 struct Run
 {
-    std::string input, poses, out_dir, cfg_file, section;
+    std::string input, out_dir, cfg_file, section;
+    hif::apps::FolderPoses poses;  ///< --poses and --extrinsic
     bool online = false, hold_scans = false, show_progress = true;
     std::unique_ptr<hif::apps::ScanSource> source;
     std::string dm_output;  ///< <folder>/hif_output.pcd for a DynamicMap folder, else empty
@@ -93,7 +95,8 @@ void setUp(const CleanOptions& o, Run& run)
         throw std::runtime_error("--hold-scans applies to offline mode only (not --online)");
     if (o.threads) hif::apps::flagInRange(*o.threads, "--threads", 1, 1024);
 
-    run.poses = o.poses;
+    run.poses.trajectory = o.poses;
+    if (!o.extrinsic.empty()) run.poses.extrinsic = hif::io::parseExtrinsic(o.extrinsic);
     run.source = hif::apps::openScanSource(run.input, {}, true, run.poses);
     run.cfg_file =
         o.config ? *o.config : defaultConfig(run.online, run.source->isDynamicMapFolder());
@@ -103,7 +106,7 @@ void setUp(const CleanOptions& o, Run& run)
 
     // No output may be an input or another output of this run, with or without --overwrite.
     hif::apps::RunFiles files;
-    hif::apps::describeInputs(run.input, files, run.poses);
+    hif::apps::describeInputs(run.input, files, run.poses.trajectory);
     files.input(run.cfg_file, "the config");
     for (const std::string& n : kOutputNames)
         files.output(run.out_dir + "/" + n, "the " + n + " of -o", n == "predictions");
@@ -149,10 +152,24 @@ void setUp(const CleanOptions& o, Run& run)
     }
 }
 
+/** A pose as --extrinsic takes it: "x y z qx qy qz qw". */
+std::string describePose(const Eigen::Isometry3d& T)
+{
+    const Eigen::Quaterniond q(T.linear());
+    std::ostringstream s;
+    s << T.translation().x() << ' ' << T.translation().y() << ' ' << T.translation().z() << ' '
+      << q.x() << ' ' << q.y() << ' ' << q.z() << ' ' << q.w();
+    return s.str();
+}
+
 void printHeader(const Run& run, std::ostream& log)
 {
     log << Clean::kTag << " input  : " << run.input
-        << (run.poses.empty() ? "" : " at the poses of " + run.poses) << "\n"
+        << (run.poses.trajectory.empty() ? "" : " at the poses of " + run.poses.trajectory)
+        << (run.poses.extrinsic
+                ? ", the LiDAR at (" + describePose(*run.poses.extrinsic) + ") in their frame"
+                : "")
+        << "\n"
         << Clean::kTag << " config : " << run.cfg_file << " [" << run.section << "], "
         << run.maps.maps.size() << " map(s)\n"
         << Clean::kTag << " mode   : "

@@ -44,28 +44,31 @@ std::string posesOf(const fs::path& folder, const std::string& poses)
 }
 
 std::unique_ptr<ScanSource> openSource(const std::string& path, bool poses_required,
-                                       const std::string& poses)
+                                       const FolderPoses& poses)
 {
     const fs::path p(path);
+    // The flag that gave a folder of clouds' poses, for inputs that hold their own.
+    const char* flag = !poses.trajectory.empty() ? "--poses" : poses.extrinsic ? "--extrinsic" : "";
     if (fs::is_directory(p))
     {
         const bool kitti = fs::is_directory(p / "velodyne"),
                    dynamicmap = fs::is_directory(p / "pcd");
-        if (!poses.empty() && (kitti || dynamicmap))
-            throw std::runtime_error("--poses is for a folder of clouds; '" + path + "' is a " +
+        if (*flag && (kitti || dynamicmap))
+            throw std::runtime_error(std::string(flag) + " is for a folder of clouds; '" + path +
+                                     "' is a " +
                                      (kitti ? "KITTI sequence" : "DynamicMap benchmark") +
                                      " folder, which holds its own poses");
         if (kitti) return openKittiFolder(path);
         if (dynamicmap) return openDynamicMapFolder(path);
-        const std::string trajectory = posesOf(p, poses);
-        if (!trajectory.empty()) return openScansWithPoses(path, trajectory);
+        const std::string trajectory = posesOf(p, poses.trajectory);
+        if (!trajectory.empty()) return openScansWithPoses(path, trajectory, poses.extrinsic);
         throw std::runtime_error("'" + path +
                                  "' is a folder with neither velodyne/, pcd/ nor poses.txt; " +
                                  kInputsRead);
     }
     if (!fs::exists(p)) throw std::runtime_error("input '" + path + "' does not exist");
-    if (!poses.empty())
-        throw std::runtime_error("--poses goes with a folder of clouds, and '" + path +
+    if (*flag)
+        throw std::runtime_error(std::string(flag) + " goes with a folder of clouds, and '" + path +
                                  "' is a file");
     const std::string ext = p.extension().string();
     if (ext == ".pcd" || ext == ".ply" || ext == ".bin" || ext == ".las" || ext == ".laz")
@@ -133,7 +136,7 @@ void checkExternalPoints(const mrpt::obs::CObservation& obs, const std::string& 
 }
 
 std::unique_ptr<ScanSource> openScanSource(const std::string& path, PrepareScan prepare,
-                                           bool poses_required, const std::string& poses)
+                                           bool poses_required, const FolderPoses& poses)
 {
     return readingAhead(openSource(path, poses_required, poses), std::move(prepare));
 }

@@ -28,9 +28,13 @@ namespace
 class ScansWithPosesSource : public ScanSource
 {
 public:
-    ScansWithPosesSource(const std::string& folder, const std::string& poses_file)
+    ScansWithPosesSource(const std::string& folder, const std::string& poses_file,
+                         const std::optional<Eigen::Isometry3d>& extrinsic)
         : poses_file_(poses_file), trajectory_(io::readTrajectory(poses_file))
     {
+        // Poses of another sensor (an IMU): the LiDAR's are pose x extrinsic.
+        if (extrinsic)
+            for (Eigen::Isometry3d& pose : trajectory_.poses) pose = pose * *extrinsic;
         NumberedFiles found = numberedFiles(folder, {".pcd", ".ply"});
         // The trajectory file may be in the folder: it is not a stray file.
         std::error_code ec;
@@ -219,9 +223,10 @@ private:
 }  // namespace
 
 std::unique_ptr<ScanSource> openScansWithPoses(const std::string& folder,
-                                               const std::string& poses_file)
+                                               const std::string& poses_file,
+                                               const std::optional<Eigen::Isometry3d>& extrinsic)
 {
-    return std::make_unique<ScansWithPosesSource>(folder, poses_file);
+    return std::make_unique<ScansWithPosesSource>(folder, poses_file, extrinsic);
 }
 
 }  // namespace hif::apps

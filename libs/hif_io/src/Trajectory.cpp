@@ -18,21 +18,24 @@ namespace hif::io
 {
 namespace
 {
-/** A TUM line's pose; `time` receives its first number. */
+/** A TUM pose from `tokens`: x y z qx qy qz qw, after a time when `time` is set (which
+ *  receives it). */
 Eigen::Isometry3d parseTum(const std::vector<std::string>& tokens, const std::string& file,
-                           const std::string& where, double& time)
+                           const std::string& where, double* time)
 {
+    const std::size_t n = time ? 8 : 7, o = time ? 1 : 0;
     double v[8];
-    for (std::size_t k = 0; k < 8; ++k)
+    for (std::size_t k = 0; k < n; ++k)
     {
-        const auto n = parseNumber(tokens[k]);
-        const std::string which = "number " + std::to_string(k + 1) + " of 8, '" + tokens[k] + "'";
-        if (!n) throwFileError(file, where + ": " + which + ", is not a number");
-        if (!std::isfinite(*n)) throwFileError(file, where + ": " + which + ", is not finite");
-        v[k] = *n;
+        const auto num = parseNumber(tokens[k]);
+        const std::string which = "number " + std::to_string(k + 1) + " of " + std::to_string(n) +
+                                  ", '" + tokens[k] + "'";
+        if (!num) throwFileError(file, where + ": " + which + ", is not a number");
+        if (!std::isfinite(*num)) throwFileError(file, where + ": " + which + ", is not finite");
+        v[k] = *num;
     }
-    time = v[0];
-    const Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);  // w x y z
+    if (time) *time = v[0];
+    const Eigen::Quaterniond q(v[o + 6], v[o + 3], v[o + 4], v[o + 5]);  // w x y z
     if (!(std::abs(q.norm() - 1.0) <= kRotationTolerance))
     {
         std::ostringstream msg;
@@ -42,7 +45,7 @@ Eigen::Isometry3d parseTum(const std::vector<std::string>& tokens, const std::st
     }
     Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
     T.linear() = q.normalized().toRotationMatrix();
-    T.translation() = Eigen::Vector3d(v[1], v[2], v[3]);
+    T.translation() = Eigen::Vector3d(v[o], v[o + 1], v[o + 2]);
     return T;
 }
 }  // namespace
@@ -82,7 +85,7 @@ Trajectory readTrajectory(const std::string& file)
             continue;
         }
         double time = 0;
-        out.poses.push_back(parseTum(tokens, file, where, time));
+        out.poses.push_back(parseTum(tokens, file, where, &time));
         if (!out.times.empty() && !(time > out.times.back()))
             throwFileError(file, where + ": time " + tokens[0] +
                                      " does not come after the line before's (a TUM trajectory "
@@ -91,6 +94,22 @@ Trajectory readTrajectory(const std::string& file)
     }
     if (out.poses.empty()) throwFileError(file, "holds no pose");
     return out;
+}
+
+Eigen::Isometry3d parseExtrinsic(const std::string& text)
+{
+    std::istringstream is(text);
+    std::vector<std::string> tokens;
+    for (std::string t; is >> t;) tokens.push_back(t);
+    const std::string what = "--extrinsic";
+    const std::string where = "'" + text + "'";
+    if (tokens.size() == 12) return parseRow34(text, what, where);
+    if (tokens.size() != 7)
+        throwFileError(what, where +
+                                 ": expected 7 numbers (x y z qx qy qz qw) or 12 (the 3x4 "
+                                 "matrix row by row), found " +
+                                 std::to_string(tokens.size()));
+    return parseTum(tokens, what, where, nullptr);
 }
 
 std::optional<Eigen::Isometry3d> poseAt(const Trajectory& tr, double t, double max_gap)

@@ -20,8 +20,11 @@ namespace hif::jobs
 /** What to clean and what to write; the flags of hif-clean, which the job's messages name. */
 struct CleanOptions
 {
-    std::string input;   ///< -i: rawlog, .simplemap or folder
-    std::string poses;   ///< --poses: a folder of clouds' trajectory (default: its poses.txt)
+    std::string input;  ///< -i: rawlog, .simplemap or folder
+    std::string poses;  ///< --poses: a folder of clouds' trajectory (default: its poses.txt)
+    /** --extrinsic: the LiDAR's pose in the frame of a folder of clouds' trajectory (7 or 12
+     *  numbers, hif::io::parseExtrinsic()); empty: the trajectory is the LiDAR's. */
+    std::string extrinsic;
     std::string output;  ///< -o: the output folder
     std::optional<std::string>
         config;  ///< -c: the .ini (default: the shipped one for the mode and input)

@@ -15,6 +15,8 @@
 #include <mrpt/obs/CSensoryFrame.h>
 #include <mrpt/poses/CPose3D.h>
 
+#include <Eigen/Geometry>
+
 #include <cstddef>
 #include <functional>
 #include <memory>
@@ -74,15 +76,26 @@ void describeInputs(const std::string& path, RunFiles& files, const std::string&
  *  whole number of points: MRPT would stop with an assertion, or read half a scan. */
 void checkExternalPoints(const mrpt::obs::CObservation& obs, const std::string& where);
 
+/** Where a folder of clouds takes its poses. */
+struct FolderPoses
+{
+    /** Its trajectory file (KITTI or TUM format); empty: the folder's poses.txt. */
+    std::string trajectory;
+    /** The LiDAR's pose in the frame of the trajectory's poses, when they are another
+     *  sensor's (the IMU of most LiDAR-inertial SLAM systems): each scan is then at pose x
+     *  extrinsic. None: they are the LiDAR's own. */
+    std::optional<Eigen::Isometry3d> extrinsic;
+};
+
 /** Opens `path`: a folder with velodyne/ is a KITTI sequence, a folder with pcd/ a DynamicMap
  *  folder, a folder with poses.txt (or any folder, with `poses` naming its trajectory file)
- *  clouds with poses, a *.simplemap file a simple map, a single cloud (.pcd, .ply, .bin, .las)
- *  an error that says what is read, anything else a rawlog (plain or gzip). The source reads
- *  one scan ahead on a second thread, and there calls `prepare` (if set) on it. Throws
- *  std::runtime_error naming it. */
+ *  clouds with poses (`poses`: their trajectory and extrinsic, for no other input), a *.simplemap
+ * file a simple map, a single cloud (.pcd, .ply, .bin, .las) an error that says what is read,
+ * anything else a rawlog (plain or gzip). The source reads one scan ahead on a second thread, and
+ * there calls `prepare` (if set) on it. Throws std::runtime_error naming it. */
 std::unique_ptr<ScanSource> openScanSource(const std::string& path, PrepareScan prepare = {},
                                            bool poses_required = true,
-                                           const std::string& poses = "");
+                                           const FolderPoses& poses = {});
 
 /** With `poses_required` false, a scan without a CObservationRobotPose before it is handed out
  *  with has_pose false instead of being an error (SLAM estimates its own poses). */
@@ -92,9 +105,12 @@ std::unique_ptr<ScanSource> openDynamicMapFolder(const std::string& folder);
 std::unique_ptr<ScanSource> openKittiFolder(const std::string& folder);
 /** Clouds in the sensor frame, NNNNNN.pcd or NNNNNN.ply in `folder`, at the poses of
  *  `poses_file` (hif::io::readTrajectory()): the k-th scan (by number) takes the k-th pose when
- *  the counts agree, else scan NNNNNN takes pose NNNNNN (a trajectory longer than the folder). */
-std::unique_ptr<ScanSource> openScansWithPoses(const std::string& folder,
-                                               const std::string& poses_file);
+ *  the counts agree, else scan NNNNNN takes pose NNNNNN (a trajectory longer than the folder);
+ *  or clouds named by their time, at the poses of those times (hif::io::poseAt()). With
+ *  `extrinsic` (FolderPoses), each at pose x extrinsic. */
+std::unique_ptr<ScanSource> openScansWithPoses(
+    const std::string& folder, const std::string& poses_file,
+    const std::optional<Eigen::Isometry3d>& extrinsic = std::nullopt);
 /** `source`, its next scan read (and given to `prepare`, if set) on a second thread while the
  *  caller works on the current one. */
 std::unique_ptr<ScanSource> readingAhead(std::unique_ptr<ScanSource> source,

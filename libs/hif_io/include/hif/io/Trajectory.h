@@ -49,6 +49,12 @@ constexpr double kSameTime = 1e-4;
 /** The median time between consecutive poses of `tr` (0 for fewer than two, or no times). */
 [[nodiscard]] double medianSpacing(const Trajectory& tr);
 
+/** The LiDAR's pose in the frame a trajectory gives (another sensor's: the IMU of most
+ *  LiDAR-inertial SLAM systems), from `text`: 7 numbers, x y z qx qy qz qw (a unit quaternion,
+ *  the TUM order), or 12, the 3x4 matrix [R | t] row by row (a rigid motion). Throws
+ *  std::runtime_error naming "--extrinsic", the text and the problem. */
+[[nodiscard]] Eigen::Isometry3d parseExtrinsic(const std::string& text);
+
 /** Reads `file`, its format told by its first pose line (12 or 8 numbers); empty lines and
  *  lines starting with '#' are skipped. Every pose is checked as KittiSequence checks poses.txt
  *  (a rigid motion; a TUM quaternion of norm 1 within kRotationTolerance, and its times
