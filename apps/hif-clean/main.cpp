@@ -50,6 +50,12 @@ struct Cli
         "",
         "poses.txt",
         cmd};
+    TCLAP::SwitchArg world_frame{
+        "", "world-frame",
+        "With a folder of clouds: the clouds are in the world frame (registered by the SLAM "
+        "system, as FAST-LIO's /cloud_registered), not the sensor's; the trajectory (and "
+        "--extrinsic) still says where the LiDAR was for each",
+        cmd};
     TCLAP::ValueArg<std::string> extrinsic{
         "",
         "extrinsic",
@@ -192,6 +198,7 @@ int run(Cli& cli)
     o.input = cli.input.getValue();
     o.poses = cli.poses.getValue();
     o.extrinsic = cli.extrinsic.getValue();
+    o.world_frame = cli.world_frame.getValue();
     o.output = cli.output.getValue();
     if (cli.config.isSet()) o.config = cli.config.getValue();
     o.section = cli.section.getValue();

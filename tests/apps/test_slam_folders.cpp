@@ -302,8 +302,9 @@ TEST(SlamFolders, CloudsNamedByTheirTimeTakeTheTrajectorysPoseOfThatTime)
 }
 
 // A LiDAR-inertial SLAM system (FAST-LIO, LIO-SAM) writes the IMU's trajectory: with the
-// LiDAR's pose in the IMU's frame (--extrinsic), the clouds get the KITTI folder's classes;
-// --extrinsic is refused where the input holds its own poses, and a wrong one is named.
+// LiDAR's pose in the IMU's frame (--extrinsic), the clouds get the KITTI folder's classes, and
+// so do its registered clouds (--world-frame); both flags are refused where the input holds its
+// own poses, and a wrong extrinsic is named.
 TEST(SlamFolders, AnExtrinsicPutsTheLidarWhereAnImusTrajectorySays)
 {
     const std::string dir = hif::test::kittiRoot() + "/sequences/04";
@@ -352,6 +353,39 @@ TEST(SlamFolders, AnExtrinsicPutsTheLidarWhereAnImusTrajectorySays)
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(predictions(w + "/no_extrinsic_out", seq.size()), reference);
 
+    // FAST-LIO's registered clouds (/cloud_registered, in the world frame) with its IMU's
+    // trajectory: --world-frame brings each into the LiDAR's frame at pose x extrinsic.
+    fs::create_directories(w + "/registered");
+    for (std::size_t i = 0; i < seq.size(); ++i)
+    {
+        const hif::io::Cloud c = seq.readScan(i);
+        hif::io::CloudWriter cw({w + "/registered/" + hif::io::frameName(i) + ".pcd"});
+        for (std::size_t k = 0; k < c.size(); ++k)
+        {
+            const Eigen::Vector3d p = seq.pose(i) * Eigen::Vector3d(c.x[k], c.y[k], c.z[k]);
+            cw.add(p.x(), p.y(), p.z(), c.intensity[k]);
+        }
+        cw.close();
+    }
+    r = hif::test::clean(w + "/registered", w + "/registered_out",
+                         [&](hif::jobs::CleanOptions& o)
+                         {
+                             o.picture = false;
+                             o.poses = w + "/imu_poses.txt";
+                             o.extrinsic = text;
+                             o.world_frame = true;
+                         });
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("in their frame, the clouds in the world frame"), std::string::npos)
+        << r.output;
+    const auto registered = predictions(w + "/registered_out", seq.size());
+    ASSERT_EQ(registered.size(), reference.size());
+    differ = 0;
+    for (std::size_t i = 0; i < registered.size(); ++i) differ += registered[i] != reference[i];
+    // The world coordinates through float32 and back: a point on a cell's border may change
+    // sides (8 of 1,234,476 did).
+    EXPECT_LE(differ, reference.size() / 20000) << differ << " of " << reference.size();
+
     expectError(withExtrinsic(dir, w + "/o1", "", text),
                 "--extrinsic is for a folder of clouds; '" + dir + "' is a KITTI sequence folder");
     expectError(withExtrinsic(w + "/scans", w + "/o2", w + "/imu_poses.txt", "0.3 -0.1 0.2"),
@@ -360,6 +394,9 @@ TEST(SlamFolders, AnExtrinsicPutsTheLidarWhereAnImusTrajectorySays)
                 "'--extrinsic' '0 0 0 0 0 0 2': the quaternion (qx qy qz qw) has norm 2");
     expectError(withExtrinsic(w + "/scans", w + "/o4", w + "/imu_poses.txt", "0 0 x 0 0 0 1"),
                 "number 3 of 7, 'x', is not a number");
+    expectError(
+        hif::test::clean(dir, w + "/o5", [&](hif::jobs::CleanOptions& o) { o.world_frame = true; }),
+        "--world-frame is for a folder of clouds; '" + dir + "' is a KITTI sequence");
 }
 
 TEST(SlamFolders, PosesThatDoNotBelongToTheScansAreWarnedAboutAtTheStart)

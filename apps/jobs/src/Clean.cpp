@@ -97,6 +97,7 @@ void setUp(const CleanOptions& o, Run& run)
 
     run.poses.trajectory = o.poses;
     if (!o.extrinsic.empty()) run.poses.extrinsic = hif::io::parseExtrinsic(o.extrinsic);
+    run.poses.world_frame = o.world_frame;
     run.source = hif::apps::openScanSource(run.input, {}, true, run.poses);
     run.cfg_file =
         o.config ? *o.config : defaultConfig(run.online, run.source->isDynamicMapFolder());
@@ -169,7 +170,7 @@ void printHeader(const Run& run, std::ostream& log)
         << (run.poses.extrinsic
                 ? ", the LiDAR at (" + describePose(*run.poses.extrinsic) + ") in their frame"
                 : "")
-        << "\n"
+        << (run.poses.world_frame ? ", the clouds in the world frame" : "") << "\n"
         << Clean::kTag << " config : " << run.cfg_file << " [" << run.section << "], "
         << run.maps.maps.size() << " map(s)\n"
         << Clean::kTag << " mode   : "

@@ -48,7 +48,10 @@ std::unique_ptr<ScanSource> openSource(const std::string& path, bool poses_requi
 {
     const fs::path p(path);
     // The flag that gave a folder of clouds' poses, for inputs that hold their own.
-    const char* flag = !poses.trajectory.empty() ? "--poses" : poses.extrinsic ? "--extrinsic" : "";
+    const char* flag = !poses.trajectory.empty() ? "--poses"
+                       : poses.extrinsic         ? "--extrinsic"
+                       : poses.world_frame       ? "--world-frame"
+                                                 : "";
     if (fs::is_directory(p))
     {
         const bool kitti = fs::is_directory(p / "velodyne"),
@@ -61,7 +64,7 @@ std::unique_ptr<ScanSource> openSource(const std::string& path, bool poses_requi
         if (kitti) return openKittiFolder(path);
         if (dynamicmap) return openDynamicMapFolder(path);
         const std::string trajectory = posesOf(p, poses.trajectory);
-        if (!trajectory.empty()) return openScansWithPoses(path, trajectory, poses.extrinsic);
+        if (!trajectory.empty()) return openScansWithPoses(path, trajectory, poses);
         throw std::runtime_error("'" + path +
                                  "' is a folder with neither velodyne/, pcd/ nor poses.txt; " +
                                  kInputsRead);

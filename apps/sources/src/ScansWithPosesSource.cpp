@@ -29,12 +29,14 @@ class ScansWithPosesSource : public ScanSource
 {
 public:
     ScansWithPosesSource(const std::string& folder, const std::string& poses_file,
-                         const std::optional<Eigen::Isometry3d>& extrinsic)
-        : poses_file_(poses_file), trajectory_(io::readTrajectory(poses_file))
+                         const FolderPoses& poses)
+        : poses_file_(poses_file),
+          trajectory_(io::readTrajectory(poses_file)),
+          world_frame_(poses.world_frame)
     {
         // Poses of another sensor (an IMU): the LiDAR's are pose x extrinsic.
-        if (extrinsic)
-            for (Eigen::Isometry3d& pose : trajectory_.poses) pose = pose * *extrinsic;
+        if (poses.extrinsic)
+            for (Eigen::Isometry3d& pose : trajectory_.poses) pose = pose * *poses.extrinsic;
         NumberedFiles found = numberedFiles(folder, {".pcd", ".ply"});
         // The trajectory file may be in the folder: it is not a stray file.
         std::error_code ec;
@@ -100,7 +102,14 @@ public:
                 "' has a VIEWPOINT other than the identity: its points may be in the world "
                 "frame (a DynamicMap scan, read from a folder with pcd/), but a folder with "
                 "poses holds clouds in the sensor frame");
-        if (!cloud.origin.isZero(0.0))
+        if (world_frame_)
+        {
+            // Registered points: into the sensor's frame (in double, a wide file's origin
+            // included), where the map takes them from, at this pose.
+            cloud.viewpoint = e.pose;
+            io::toViewpointFrame(cloud);
+        }
+        else if (!cloud.origin.isZero(0.0))
             for (std::size_t i = 0; i < cloud.size(); ++i)
             {
                 const Eigen::Vector3d p = cloud.point(i);
@@ -216,6 +225,7 @@ private:
 
     std::string poses_file_;
     io::Trajectory trajectory_;
+    bool world_frame_ = false;  ///< FolderPoses::world_frame
     std::vector<Entry> entries_;
     std::vector<std::string> warnings_;
     std::size_t pos_ = 0;  ///< next entry
@@ -224,9 +234,9 @@ private:
 
 std::unique_ptr<ScanSource> openScansWithPoses(const std::string& folder,
                                                const std::string& poses_file,
-                                               const std::optional<Eigen::Isometry3d>& extrinsic)
+                                               const FolderPoses& poses)
 {
-    return std::make_unique<ScansWithPosesSource>(folder, poses_file, extrinsic);
+    return std::make_unique<ScansWithPosesSource>(folder, poses_file, poses);
 }
 
 }  // namespace hif::apps

@@ -25,7 +25,8 @@ struct CleanOptions
     /** --extrinsic: the LiDAR's pose in the frame of a folder of clouds' trajectory (7 or 12
      *  numbers, hif::io::parseExtrinsic()); empty: the trajectory is the LiDAR's. */
     std::string extrinsic;
-    std::string output;  ///< -o: the output folder
+    bool world_frame = false;  ///< --world-frame: a folder of clouds registered in the world
+    std::string output;        ///< -o: the output folder
     std::optional<std::string>
         config;  ///< -c: the .ini (default: the shipped one for the mode and input)
     std::string section = "map";               ///< --section with the map list

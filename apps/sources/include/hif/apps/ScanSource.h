@@ -85,6 +85,10 @@ struct FolderPoses
      *  sensor's (the IMU of most LiDAR-inertial SLAM systems): each scan is then at pose x
      *  extrinsic. None: they are the LiDAR's own. */
     std::optional<Eigen::Isometry3d> extrinsic;
+    /** The clouds are in the world frame (registered by the SLAM system, as FAST-LIO's
+     *  /cloud_registered), not the sensor's: each is brought into the sensor's frame by its
+     *  pose's inverse. */
+    bool world_frame = false;
 };
 
 /** Opens `path`: a folder with velodyne/ is a KITTI sequence, a folder with pcd/ a DynamicMap
@@ -106,11 +110,12 @@ std::unique_ptr<ScanSource> openKittiFolder(const std::string& folder);
 /** Clouds in the sensor frame, NNNNNN.pcd or NNNNNN.ply in `folder`, at the poses of
  *  `poses_file` (hif::io::readTrajectory()): the k-th scan (by number) takes the k-th pose when
  *  the counts agree, else scan NNNNNN takes pose NNNNNN (a trajectory longer than the folder);
- *  or clouds named by their time, at the poses of those times (hif::io::poseAt()). With
- *  `extrinsic` (FolderPoses), each at pose x extrinsic. */
-std::unique_ptr<ScanSource> openScansWithPoses(
-    const std::string& folder, const std::string& poses_file,
-    const std::optional<Eigen::Isometry3d>& extrinsic = std::nullopt);
+ *  or clouds named by their time, at the poses of those times (hif::io::poseAt()). With an
+ *  extrinsic (`poses`), each at pose x extrinsic; `poses.trajectory` is not read (poses_file
+ *  is). */
+std::unique_ptr<ScanSource> openScansWithPoses(const std::string& folder,
+                                               const std::string& poses_file,
+                                               const FolderPoses& poses = {});
 /** `source`, its next scan read (and given to `prepare`, if set) on a second thread while the
  *  caller works on the current one. */
 std::unique_ptr<ScanSource> readingAhead(std::unique_ptr<ScanSource> source,

@@ -230,10 +230,11 @@ struct PcdCloud : Cloud
     }
 };
 
-/** Reads an ASCII or binary PCD file (fields x y z [intensity] and others; x y z float32 or
- *  float64, intensity float32; in ASCII, `nan` for an invalid point, as PCL writes it).
- *  Throws std::runtime_error naming the file and the problem for anything else (compressed
- *  data, missing fields, a truncated body). */
+/** Reads a PCD file, ASCII, binary or PCL's binary_compressed (fields x y z [intensity] and
+ *  others, PCL's padding fields "_" too; x y z float32 or float64, intensity of any number type,
+ *  as float32; in ASCII, `nan` for an invalid point, as PCL writes it). Throws
+ *  std::runtime_error naming the file and the problem for anything else (missing fields, a
+ *  truncated body, compressed data that do not uncompress). */
 [[nodiscard]] PcdCloud readPcd(const std::string& file);
 
 /** Reads a PLY point cloud (ASCII or binary little-endian; the vertex element first, with
