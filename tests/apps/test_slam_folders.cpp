@@ -353,13 +353,15 @@ TEST(SlamFolders, AnExtrinsicPutsTheLidarWhereAnImusTrajectorySays)
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(predictions(w + "/no_extrinsic_out", seq.size()), reference);
 
-    // FAST-LIO's registered clouds (/cloud_registered, in the world frame) with its IMU's
-    // trajectory: --world-frame brings each into the LiDAR's frame at pose x extrinsic.
+    // FAST-LIO's registered clouds (/cloud_registered, in the world frame; saved as
+    // scans_N.pcd) with its IMU's trajectory: --world-frame brings each into the LiDAR's frame
+    // at pose x extrinsic.
     fs::create_directories(w + "/registered");
     for (std::size_t i = 0; i < seq.size(); ++i)
     {
         const hif::io::Cloud c = seq.readScan(i);
-        hif::io::CloudWriter cw({w + "/registered/" + hif::io::frameName(i) + ".pcd"});
+        // Named as FAST-LIO names them.
+        hif::io::CloudWriter cw({w + "/registered/scans_" + std::to_string(i) + ".pcd"});
         for (std::size_t k = 0; k < c.size(); ++k)
         {
             const Eigen::Vector3d p = seq.pose(i) * Eigen::Vector3d(c.x[k], c.y[k], c.z[k]);
@@ -452,6 +454,14 @@ TEST(SlamFolders, WrongFoldersAndTrajectoriesAreNamed)
         return w + "/" + name;
     };
     const std::string id = "1 0 0 0 0 1 0 0 0 0 1 0\n";
+    // Clouds of two prefixes: neither is the scans.
+    fs::create_directories(w + "/prefixes");
+    for (const char* name : {"a_1.pcd", "b_2.pcd"})
+        fs::copy_file(w + "/scans/000000.pcd", w + "/prefixes/" + name);
+    std::ofstream(w + "/prefixes/poses.txt") << id;
+    expectError(clean(w + "/prefixes", w + "/o0"),
+                "has no scan (clouds named by their number, NNNNNN.pcd or NNNNNN.ply, or by their "
+                "time, 1317022176.580342102.pcd); it holds a_1.pcd, b_2.pcd");
     // A single cloud: what was given and what is read.
     expectError(clean(w + "/scans/000000.pcd", w + "/o1"),
                 "is one point cloud (pcd), without a pose");

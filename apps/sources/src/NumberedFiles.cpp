@@ -17,19 +17,44 @@ namespace hif::apps
 NumberedFiles numberedFiles(const std::string& folder, const std::vector<std::string>& extensions)
 {
     NumberedFiles out;
+    // Candidates: a stem that is a number of up to 8 digits after a prefix without digits or
+    // dots (none, "scans_", "frame"), with one of the extensions.
+    struct Candidate
+    {
+        std::string prefix;
+        std::size_t number;
+        std::string path;
+    };
+    std::vector<Candidate> candidates;
     for (const auto& e : fs::directory_iterator(folder))
     {
         const std::string stem = e.path().stem().string();
+        const auto first_digit = stem.find_last_not_of("0123456789") + 1;  // npos + 1 = 0
+        const std::string prefix = stem.substr(0, first_digit), digits = stem.substr(first_digit);
         const bool numbered =
-            !stem.empty() && stem.size() <= 8 &&
-            std::all_of(stem.begin(), stem.end(), [](unsigned char c) { return std::isdigit(c); });
+            !digits.empty() && digits.size() <= 8 &&
+            std::none_of(prefix.begin(), prefix.end(),
+                         [](unsigned char c) { return std::isdigit(c) || c == '.'; });
         const std::string ext = e.path().extension().string();
         if (e.is_regular_file() && numbered &&
             std::find(extensions.begin(), extensions.end(), ext) != extensions.end())
-            out.files.emplace_back(std::stoul(stem), e.path().string());
+            candidates.push_back({prefix, std::stoul(digits), e.path().string()});
         else
             out.other.push_back(e.path().filename().string());
     }
+    // The scans: those named by their number alone, else those of one prefix shared by all
+    // (FAST-LIO's scans_12.pcd); anything else is not a scan.
+    const bool bare = std::any_of(candidates.begin(), candidates.end(),
+                                  [](const Candidate& c) { return c.prefix.empty(); });
+    const bool one_prefix =
+        !candidates.empty() &&
+        std::all_of(candidates.begin(), candidates.end(),
+                    [&](const Candidate& c) { return c.prefix == candidates.front().prefix; });
+    for (Candidate& c : candidates)
+        if (bare ? c.prefix.empty() : one_prefix)
+            out.files.emplace_back(c.number, std::move(c.path));
+        else
+            out.other.push_back(fs::path(c.path).filename().string());
     std::sort(out.files.begin(), out.files.end());
     std::sort(out.other.begin(), out.other.end());
     for (std::size_t k = 1; k < out.files.size(); ++k)

@@ -22,9 +22,11 @@ struct NumberedFiles
 };
 
 /** The regular files of `folder` whose stem is a number of up to 8 digits and whose extension
- *  is one of `extensions`; anything else there (a gt_cloud.pcd, results written into the
- *  folder) is listed in `other`, never read as a scan. Throws std::runtime_error naming the
- *  folder when two files have one number (000001.pcd and 1.pcd). */
+ *  is one of `extensions`; without any, those whose stem is such a number after one prefix
+ *  (without digits or dots) that they all share (FAST-LIO's scans_12.pcd). Anything else there
+ *  (a gt_cloud.pcd, results written into the folder, files of another prefix) is listed in
+ *  `other`, never read as a scan. Throws std::runtime_error naming the folder when two files
+ *  have one number (000001.pcd and 1.pcd). */
 [[nodiscard]] NumberedFiles numberedFiles(const std::string& folder,
                                           const std::vector<std::string>& extensions);
 
