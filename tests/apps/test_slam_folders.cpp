@@ -504,3 +504,39 @@ TEST(SlamFolders, WrongFoldersAndTrajectoriesAreNamed)
     // Nothing was written for any of them.
     for (int k = 1; k <= 10; ++k) EXPECT_FALSE(fs::exists(w + "/o" + std::to_string(k))) << k;
 }
+
+// An organized cloud (Ouster's, Hesai's) holds 0 0 0 where a beam returned nothing: such a
+// point is no measurement. It is read as an invalid point: labelled moving, counted as invalid
+// (not as a return nearer than min_range), and written to no cloud.
+TEST(SlamFolders, AnOrganizedCloudsNoReturnsAreInvalidPoints)
+{
+    const WorkDir work = workDir("slam_no_return_" + std::to_string(getpid()));
+    const std::string& w = work.path();
+    fs::create_directories(w + "/scans");
+    for (int i = 0; i < 3; ++i)
+    {
+        hif::io::CloudWriter c({w + "/scans/" + hif::io::frameName(i) + ".pcd"});
+        for (int k = 0; k < 150; ++k)
+            k % 3 == 2 ? c.add(0.0, 0.0, 0.0, 0.0f) : c.add(5.0 + 0.01 * k, 1.0, -1.0, 1.0f);
+        c.close();
+    }
+    std::ofstream(w + "/scans/poses.txt") << "1 0 0 0 0 1 0 0 0 0 1 0\n"
+                                             "1 0 0 0.1 0 1 0 0 0 0 1 0\n"
+                                             "1 0 0 0.2 0 1 0 0 0 0 1 0\n";
+    const Result r = clean(w + "/scans", w + "/out");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto summary = readJson(w + "/out/summary.json");
+    EXPECT_EQ(summary["points_invalid"].get<std::size_t>(), 150u);
+    EXPECT_EQ(summary["points_near"].get<std::size_t>(), 0u);
+    const auto labels = hif::io::readLabels(w + "/out/predictions/000001.label");
+    ASSERT_EQ(labels.size(), 150u);
+    for (std::size_t k = 2; k < labels.size(); k += 3) EXPECT_EQ(labels[k], hif::io::kLabelMoving);
+    // No cloud holds a point at a sensor's place.
+    for (const char* cloud : {"/out/static_map.ply", "/out/removed.ply"})
+    {
+        const hif::io::PcdCloud c = hif::io::readPly(w + cloud);
+        std::size_t at_sensor = 0;
+        for (std::size_t k = 0; k < c.size(); ++k) at_sensor += std::abs(c.point(k).z()) < 1e-9;
+        EXPECT_EQ(at_sensor, 0u) << cloud;
+    }
+}

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iterator>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 
@@ -102,6 +103,13 @@ public:
                 "' has a VIEWPOINT other than the identity: its points may be in the world "
                 "frame (a DynamicMap scan, read from a folder with pcd/), but a folder with "
                 "poses holds clouds in the sensor frame");
+        // A point at the sensor's origin exactly is no return (an organized cloud's place
+        // holder: Ouster's and Hesai's drivers write 0 0 0 there): read as an invalid point,
+        // still labelled, not written to the clouds.
+        if (!world_frame_)
+            for (std::size_t i = 0; i < cloud.size(); ++i)
+                if (cloud.point(i).isZero(0.0))
+                    cloud.x[i] = cloud.y[i] = cloud.z[i] = std::numeric_limits<float>::quiet_NaN();
         if (world_frame_)
         {
             // Registered points: into the sensor's frame (in double, a wide file's origin
