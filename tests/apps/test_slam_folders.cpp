@@ -277,6 +277,30 @@ TEST(SlamFolders, CloudsNamedByTheirTimeTakeTheTrajectorysPoseOfThatTime)
     }
     EXPECT_LE(differ, points / 100000) << differ << " of " << points;
 
+    // ROS 2's pointcloud_to_pcd names them <sec>.<nanosec> without the nanoseconds' leading
+    // zeros: read so (the first cloud here is at a whole second, 1317022176.0), and said.
+    fs::create_directories(w + "/bag2");
+    std::vector<std::string> ros2_names;
+    for (std::size_t i = 0; i < seq.size(); ++i)
+    {
+        const double t = kStart + seq.time(i);
+        const auto sec = static_cast<long long>(std::floor(t));
+        const auto nanosec = static_cast<long long>(std::llround((t - double(sec)) * 1e9));
+        ros2_names.push_back(std::to_string(sec) + "." + std::to_string(nanosec));
+        fs::copy_file(w + "/bag/" + stamp(i) + ".pcd", w + "/bag2/" + ros2_names.back() + ".pcd");
+    }
+    r = clean(w + "/bag2", w + "/bag2_out", w + "/trajectory.txt");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("without the nanoseconds' leading zeros (ROS 2's pointcloud_to_pcd), "
+                            "and read so: " +
+                            ros2_names.front() + ".pcd is at " + stamp(0) + " s"),
+              std::string::npos)
+        << r.output;
+    for (std::size_t i = 0; i < seq.size(); ++i)
+        EXPECT_EQ(hif::io::readLabels(w + "/bag2_out/predictions/" + ros2_names[i] + ".label"),
+                  hif::io::readLabels(w + "/bag_out/predictions/" + stamp(i) + ".label"))
+            << i;
+
     // The trajectory starts after the first cloud: that cloud is left out, by name.
     {
         std::ifstream in(w + "/trajectory.txt");

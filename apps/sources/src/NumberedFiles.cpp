@@ -74,6 +74,13 @@ TimedFiles timedFiles(const std::string& folder, const std::vector<std::string>&
         return !s.empty() &&
                std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isdigit(c); });
     };
+    // Candidates: <prefix><seconds>.<fraction> or <prefix><19-digit nanoseconds>, the prefix
+    // without digits or dots (pcl_ros's tools take one), shared by all.
+    struct Candidate
+    {
+        std::string prefix, seconds, fraction, path;
+    };
+    std::vector<Candidate> found;
     for (const auto& e : fs::directory_iterator(folder))
     {
         const std::string ext = e.path().extension().string();
@@ -81,18 +88,41 @@ TimedFiles timedFiles(const std::string& folder, const std::vector<std::string>&
             std::find(extensions.begin(), extensions.end(), ext) == extensions.end())
             continue;
         const std::string stem = e.path().stem().string();
-        const auto dot = stem.find('.');
-        double seconds = 0.0;
-        if (dot != std::string::npos && digits(stem.substr(0, dot)) && digits(stem.substr(dot + 1)))
-            seconds = std::stod(stem);  // seconds.fraction
-        else if (stem.size() == 19 && digits(stem))
-            // Nanoseconds: whole seconds and the rest apart, so that no digit is lost to the
-            // double before the point.
-            seconds = double(std::stoull(stem.substr(0, 10))) + 1e-9 * std::stod(stem.substr(10));
-        else
+        const auto start = stem.find_first_of("0123456789");
+        if (start == std::string::npos || stem.substr(0, start).find('.') != std::string::npos)
             continue;
-        out.files.emplace_back(seconds, e.path().string());
+        const std::string time = stem.substr(start);
+        const auto dot = time.find('.');
+        if (dot != std::string::npos && digits(time.substr(0, dot)) && digits(time.substr(dot + 1)))
+            found.push_back({stem.substr(0, start), time.substr(0, dot), time.substr(dot + 1),
+                             e.path().string()});
+        else if (time.size() == 19 && digits(time))
+            found.push_back(
+                {stem.substr(0, start), time.substr(0, 10), time.substr(10), e.path().string()});
     }
+    if (found.empty() ||
+        std::any_of(found.begin(), found.end(),
+                    [&](const Candidate& c) { return c.prefix != found.front().prefix; }))
+        return out;
+    // The fraction: decimal digits (ROS 1's bag_to_pcd pads the nanoseconds to 9 digits, other
+    // tools print a fixed number of decimals), unless the fractions have different lengths and
+    // the longest has 9 digits: ROS 2's pointcloud_to_pcd writes the nanoseconds unpadded
+    // (<sec>.<nanosec>: 5803421 is 0.005803421 s), and most of them have 9.
+    std::size_t shortest = 9, longest = 0;
+    for (const Candidate& c : found)
+    {
+        shortest = std::min(shortest, c.fraction.size());
+        longest = std::max(longest, c.fraction.size());
+    }
+    const bool nanoseconds = longest == 9 && shortest < 9;
+    for (const Candidate& c : found)
+    {
+        const double fraction = c.fraction.size() > 9 ? std::stod("0." + c.fraction)
+                                : nanoseconds         ? 1e-9 * double(std::stoull(c.fraction))
+                                                      : std::stod("0." + c.fraction);
+        out.files.emplace_back(double(std::stoull(c.seconds)) + fraction, c.path);
+    }
+    out.nanoseconds_unpadded = nanoseconds;
     std::sort(out.files.begin(), out.files.end());
     for (std::size_t k = 1; k < out.files.size(); ++k)
         if (out.files[k].first == out.files[k - 1].first)

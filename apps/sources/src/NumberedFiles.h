@@ -34,12 +34,17 @@ struct NumberedFiles
 struct TimedFiles
 {
     std::vector<std::pair<double, std::string>> files;
+    /** The fractions were read as nanoseconds written without their leading zeros (ROS 2's
+     *  pointcloud_to_pcd), not as decimals. */
+    bool nanoseconds_unpadded = false;
 };
 
-/** The regular files of `folder` with one of `extensions` whose stem is a time: seconds with a
- *  fraction (1317022176.580342102.pcd, as pcl_ros's bag_to_pcd names them) or nanoseconds, 19
- *  digits (1317022176580342102.pcd). Throws std::runtime_error naming the folder when two files
- *  have one time. */
+/** The regular files of `folder` with one of `extensions` whose stem is a time, after a prefix
+ *  (no digits, no dots) that they all share: seconds with a fraction (1317022176.580342102.pcd,
+ *  as pcl_ros's bag_to_pcd names them; ROS 2's pointcloud_to_pcd writes the nanoseconds without
+ *  their leading zeros, told by fractions of different lengths, the longest of 9 digits) or
+ *  nanoseconds, 19 digits (1317022176580342102.pcd). None when their prefixes differ. Throws
+ *  std::runtime_error naming the folder when two files have one time. */
 [[nodiscard]] TimedFiles timedFiles(const std::string& folder,
                                     const std::vector<std::string>& extensions);
 

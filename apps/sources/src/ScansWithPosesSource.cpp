@@ -75,6 +75,18 @@ public:
                     (found.other.empty() ? "" : "; it holds " + listNames(found.other)));
             oneKind(timed.files);
             byTime(folder, timed.files);
+            if (timed.nanoseconds_unpadded)
+                warnings_.push_back(
+                    "the clouds of '" + folder +
+                    "' are named <seconds>.<nanoseconds> without the nanoseconds' leading zeros "
+                    "(ROS 2's pointcloud_to_pcd), and read so: " +
+                    fs::path(timed.files.front().second).filename().string() + " is at " +
+                    [&]
+                    {
+                        char t[40];
+                        std::snprintf(t, sizeof t, "%.9f s", timed.files.front().first);
+                        return std::string(t);
+                    }());
             std::vector<std::string> timed_names;
             for (const auto& [time, file] : timed.files)
                 timed_names.push_back(fs::path(file).filename().string());
