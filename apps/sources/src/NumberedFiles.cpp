@@ -93,7 +93,9 @@ TimedFiles timedFiles(const std::string& folder, const std::vector<std::string>&
             continue;
         const std::string time = stem.substr(start);
         const auto dot = time.find('.');
-        if (dot != std::string::npos && digits(time.substr(0, dot)) && digits(time.substr(dot + 1)))
+        // Up to 12 digits of seconds (a clock's, or the time since a recording started).
+        if (dot != std::string::npos && dot <= 12 && digits(time.substr(0, dot)) &&
+            digits(time.substr(dot + 1)))
             found.push_back({stem.substr(0, start), time.substr(0, dot), time.substr(dot + 1),
                              e.path().string()});
         else if (time.size() == 19 && digits(time))

@@ -33,11 +33,9 @@ public:
                          const FolderPoses& poses)
         : poses_file_(poses_file),
           trajectory_(io::readTrajectory(poses_file)),
+          extrinsic_(poses.extrinsic),
           world_frame_(poses.world_frame)
     {
-        // Poses of another sensor (an IMU): the LiDAR's are pose x extrinsic.
-        if (poses.extrinsic)
-            for (Eigen::Isometry3d& pose : trajectory_.poses) pose = pose * *poses.extrinsic;
         NumberedFiles found = numberedFiles(folder, {".pcd", ".ply"});
         // The trajectory file may be in the folder: it is not a stray file.
         std::error_code ec;
@@ -162,6 +160,12 @@ private:
         std::optional<std::string> name;
     };
 
+    /** The LiDAR's pose for the trajectory's `pose`. */
+    [[nodiscard]] Eigen::Isometry3d lidarPose(const Eigen::Isometry3d& pose) const
+    {
+        return extrinsic_ ? pose * *extrinsic_ : pose;
+    }
+
     /** Clouds named by their number: one pose a scan, in order; a trajectory longer than the
      *  folder (scans left out, as KITTI's poses.txt for a part of a sequence) is read by the
      *  scans' numbers. */
@@ -195,7 +199,8 @@ private:
             const std::size_t row = by_number ? number : k;
             std::optional<double> time;
             if (!trajectory_.times.empty()) time = trajectory_.times[row];
-            entries_.push_back({number, file, trajectory_.poses[row], time, std::nullopt});
+            entries_.push_back(
+                {number, file, lidarPose(trajectory_.poses[row]), time, std::nullopt});
         }
     }
 
@@ -222,9 +227,9 @@ private:
                 continue;
             }
             entries_.push_back(
-                {entries_.size(), file, *pose, time, fs::path(file).stem().string()});
+                {entries_.size(), file, lidarPose(*pose), time, fs::path(file).stem().string()});
         }
-        char span[160];
+        char span[256];
         std::snprintf(span, sizeof span,
                       "its poses run from %.6f to %.6f s, %.3f s apart (median), the clouds' from "
                       "%.6f to %.6f s",
@@ -245,6 +250,9 @@ private:
 
     std::string poses_file_;
     io::Trajectory trajectory_;
+    /** FolderPoses::extrinsic: each scan at pose x extrinsic, after any interpolation of the
+     *  trajectory's pose (lidarPose()). */
+    std::optional<Eigen::Isometry3d> extrinsic_;
     bool world_frame_ = false;  ///< FolderPoses::world_frame
     std::vector<Entry> entries_;
     std::vector<std::string> warnings_;
