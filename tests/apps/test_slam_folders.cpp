@@ -404,6 +404,18 @@ TEST(SlamFolders, AnExtrinsicPutsTheLidarWhereAnImusTrajectorySays)
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("in their frame, the clouds in the world frame"), std::string::npos)
         << r.output;
+    // summary.json says where the poses came from.
+    {
+        const auto poses = readJson(w + "/registered_out/summary.json")["poses"];
+        EXPECT_EQ(poses["trajectory"].get<std::string>(), w + "/imu_poses.txt");
+        EXPECT_TRUE(poses["world_frame"].get<bool>());
+        const auto e = poses["extrinsic_xyz_qxyzw"].get<std::vector<double>>();
+        const std::vector<double> expected{0.3, -0.1,           0.2,           0.0,
+                                           0.0, std::sqrt(0.5), std::sqrt(0.5)};
+        ASSERT_EQ(e.size(), expected.size());
+        for (std::size_t k = 0; k < e.size(); ++k) EXPECT_NEAR(e[k], expected[k], 1e-12) << k;
+        EXPECT_TRUE(readJson(w + "/kitti_out/summary.json")["poses"].is_null());
+    }
     const auto registered = predictions(w + "/registered_out", seq.size());
     ASSERT_EQ(registered.size(), reference.size());
     differ = 0;

@@ -429,9 +429,19 @@ CleanResult Clean::run(std::ostream& log) const
     t.files_ms = msSince(t_files) + out.write_ms_total;
     t.total_s = msSince(t_start) / 1000.0;
 
-    SummaryInfo info{
-        run.input, run.cfg_file, run.online,      run.hold_scans,   run.source->skippedObjects(),
-        picture,   run.sensor,   &run.pose_check, run.poses_doubted};
+    SummaryInfo info;
+    info.input = run.input;
+    info.config = run.cfg_file;
+    info.trajectory = hif::apps::folderTrajectory(run.input, run.poses.trajectory);
+    info.extrinsic = run.poses.extrinsic;
+    info.world_frame = run.poses.world_frame;
+    info.online = run.online;
+    info.held_scans = run.hold_scans;
+    info.skipped_objects = run.source->skippedObjects();
+    info.picture = picture;
+    info.sensor = run.sensor;
+    info.poses = &run.pose_check;
+    info.poses_doubted = run.poses_doubted;
     writeSummary(dir + "/summary.json", info, *run.hif_map, out, t);
     run.staged->commit();
     if (run.staged_dm) run.staged_dm->commit();

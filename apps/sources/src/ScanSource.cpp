@@ -84,6 +84,14 @@ std::unique_ptr<ScanSource> openSource(const std::string& path, bool poses_requi
 }
 }  // namespace
 
+std::string folderTrajectory(const std::string& path, const std::string& poses)
+{
+    const fs::path p(path);
+    if (!fs::is_directory(p) || fs::is_directory(p / "velodyne") || fs::is_directory(p / "pcd"))
+        return "";
+    return posesOf(p, poses);
+}
+
 void describeInputs(const std::string& path, RunFiles& files, const std::string& poses)
 {
     const fs::path p(path);

@@ -30,6 +30,21 @@ void writeSummary(const std::string& file, const SummaryInfo& info,
     const auto cls = hif::apps::timeStats(out.classify_ms);
     nlohmann::ordered_json j;
     j["input"] = info.input;
+    if (info.trajectory.empty())
+        j["poses"] = nullptr;  // the input's own
+    else
+    {
+        nlohmann::ordered_json extrinsic = nullptr;
+        if (info.extrinsic)
+        {
+            const Eigen::Quaterniond q(info.extrinsic->linear());
+            const Eigen::Vector3d& at = info.extrinsic->translation();
+            extrinsic = {at.x(), at.y(), at.z(), q.x(), q.y(), q.z(), q.w()};
+        }
+        j["poses"] = {{"trajectory", info.trajectory},
+                      {"extrinsic_xyz_qxyzw", extrinsic},
+                      {"world_frame", info.world_frame}};
+    }
     j["config"] = info.config;
     j["mode"] = info.online ? "online" : "offline";
     j["scans"] = t.scans;

@@ -5,6 +5,7 @@
  */
 #pragma once
 
+#include <Eigen/Geometry>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -24,6 +25,11 @@ struct SensorReport
 struct SummaryInfo
 {
     std::string input, config;
+    /** A folder of clouds' trajectory file (empty for other inputs), the LiDAR's extrinsic in
+     *  it (--extrinsic) and whether the clouds were in the world frame (--world-frame). */
+    std::string trajectory;
+    std::optional<Eigen::Isometry3d> extrinsic;
+    bool world_frame = false;
     bool online = false;
     bool held_scans = false;
     std::size_t skipped_objects = 0;

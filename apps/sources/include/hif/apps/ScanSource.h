@@ -66,6 +66,10 @@ public:
     [[nodiscard]] virtual std::vector<std::string> warnings() const { return {}; }
 };
 
+/** The trajectory file a folder of clouds `path` is read with (`poses`, else its poses.txt);
+ *  empty for any other input. */
+[[nodiscard]] std::string folderTrajectory(const std::string& path, const std::string& poses);
+
 /** Adds to `files` what reading `path` (with `poses`, see openScanSource()) reads: a rawlog or
  *  simple map file, a KITTI folder's files, a DynamicMap folder's scans, or a folder's clouds and
  *  its poses. */
