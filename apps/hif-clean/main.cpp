@@ -30,7 +30,8 @@ struct Cli
         "Input: an MRPT rawlog with a CObservationRobotPose before each scan (as kitti2rawlog "
         "writes), a .simplemap, a KITTI sequence folder (velodyne/, poses.txt, calib.txt; "
         "SemanticKITTI layout), a DynamicMap benchmark folder (pcd/NNNNNN.pcd), or a folder of "
-        "clouds in the sensor frame (NNNNNN.pcd or NNNNNN.ply) with poses.txt (the sensor's "
+        "clouds in the sensor frame (NNNNNN.pcd, .ply or KITTI's .bin) with poses.txt (the "
+        "sensor's "
         "pose in the world for each, KITTI or TUM format), as LiDAR SLAM systems write them; "
         "clouds named by their time (1317022176.580342102.pcd, as a bag exported cloud by "
         "cloud) take the pose of their time in a TUM trajectory",

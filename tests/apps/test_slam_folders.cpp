@@ -117,6 +117,12 @@ TEST(SlamFolders, CloudsWithTheirPosesGiveTheKittiFoldersClasses)
                                          c.x, c.y, c.z, c.intensity);
     }
     writeKittiPoses(poses, w + "/compressed_scans/poses.txt");
+    // KITTI's .bin scans themselves, with the LiDAR's poses (as KISS-ICP writes them).
+    fs::create_directories(w + "/bin_scans");
+    for (std::size_t i = 0; i < seq.size(); ++i)
+        fs::copy_file(dir + "/velodyne/" + hif::io::frameName(i) + ".bin",
+                      w + "/bin_scans/" + hif::io::frameName(i) + ".bin");
+    writeKittiPoses(poses, w + "/bin_scans/poses.txt");
     writeScans(seq, w + "/ply_scans", ".ply");
     writeKittiPoses(poses, w + "/ply_poses_kitti.txt");
     {
@@ -185,6 +191,9 @@ TEST(SlamFolders, CloudsWithTheirPosesGiveTheKittiFoldersClasses)
     r = clean(w + "/compressed_scans", w + "/compressed_out");
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_EQ(predictions(w + "/compressed_out", seq.size()), reference);
+    r = clean(w + "/bin_scans", w + "/bin_out");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(predictions(w + "/bin_out", seq.size()), reference);
 
     r = clean(w + "/ply_scans", w + "/ply_out", w + "/ply_poses_kitti.txt");
     ASSERT_EQ(r.code, 0) << r.output;
@@ -496,7 +505,7 @@ TEST(SlamFolders, WrongFoldersAndTrajectoriesAreNamed)
         fs::copy_file(w + "/scans/000000.pcd", w + "/prefixes/" + name);
     std::ofstream(w + "/prefixes/poses.txt") << id;
     expectError(clean(w + "/prefixes", w + "/o0"),
-                "has no scan (clouds named by their number, NNNNNN.pcd or NNNNNN.ply, or by their "
+                "has no scan (clouds named by their number, NNNNNN.pcd, .ply or .bin, or by their "
                 "time, 1317022176.580342102.pcd); it holds a_1.pcd, b_2.pcd");
     // A single cloud: what was given and what is read.
     expectError(clean(w + "/scans/000000.pcd", w + "/o1"),
@@ -524,7 +533,8 @@ TEST(SlamFolders, WrongFoldersAndTrajectoriesAreNamed)
     expectError(clean(w + "/kitti", w + "/o8", write("three.txt", id + id + id)),
                 "--poses is for a folder of clouds");
     fs::copy_file(w + "/scans/000000.pcd", w + "/scans/000003.ply");
-    expectError(clean(w + "/scans", w + "/o9", w + "/three.txt"), "holds both .pcd and .ply scans");
+    expectError(clean(w + "/scans", w + "/o9", w + "/three.txt"),
+                "holds scans of two kinds (000000.pcd, 000003.ply)");
     fs::remove(w + "/scans/000003.ply");
     // A cloud that says it is in the world frame.
     {

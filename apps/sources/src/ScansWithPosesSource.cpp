@@ -2,9 +2,9 @@
 /**
  * @file   ScansWithPosesSource.cpp
  * @brief  Scans as LiDAR SLAM systems write them: a folder of per-scan clouds in the sensor
- *         frame (NNNNNN.pcd or NNNNNN.ply) and a trajectory file (KITTI or TUM format) with the
- *         sensor's pose in the world for each; or clouds named by their time (a bag exported
- *         cloud by cloud) with a TUM trajectory, posed by time.
+ *         frame (NNNNNN.pcd, .ply or KITTI's .bin) and a trajectory file (KITTI or TUM format) with
+ * the sensor's pose in the world for each; or clouds named by their time (a bag exported cloud by
+ * cloud) with a TUM trajectory, posed by time.
  */
 #include <algorithm>
 #include <cstdio>
@@ -26,6 +26,20 @@ namespace hif::apps
 {
 namespace
 {
+/** The clouds a folder with a trajectory holds: PCD, PLY, or KITTI's .bin (float32 x y z
+ *  intensity, as KISS-ICP and other odometry pipelines read them). */
+const std::vector<std::string> kCloudExtensions{".pcd", ".ply", ".bin"};
+
+io::PcdCloud readCloud(const std::string& file)
+{
+    const std::string ext = fs::path(file).extension().string();
+    if (ext == ".pcd") return io::readPcd(file);
+    if (ext == ".ply") return io::readPly(file);
+    io::PcdCloud cloud;
+    static_cast<io::Cloud&>(cloud) = io::readKittiBin(file);
+    return cloud;
+}
+
 class ScansWithPosesSource : public ScanSource
 {
 public:
@@ -36,7 +50,7 @@ public:
           extrinsic_(poses.extrinsic),
           world_frame_(poses.world_frame)
     {
-        NumberedFiles found = numberedFiles(folder, {".pcd", ".ply"});
+        NumberedFiles found = numberedFiles(folder, kCloudExtensions);
         // The trajectory file may be in the folder: it is not a stray file.
         std::error_code ec;
         found.other.erase(
@@ -44,16 +58,16 @@ public:
                            [&](const std::string& name)
                            { return fs::equivalent(fs::path(folder) / name, poses_file, ec); }),
             found.other.end());
-        // One kind of cloud: .pcd and .ply beside each other leave which are the scans open.
+        // One kind of cloud: .pcd, .ply and .bin beside each other leave which are the scans
+        // open.
         const auto oneKind = [&](const auto& files)
         {
             const fs::path first = files.front().second;
             for (const auto& f : files)
                 if (fs::path(f.second).extension() != first.extension())
-                    throw std::runtime_error("'" + folder + "' holds both .pcd and .ply scans (" +
-                                             first.filename().string() + ", " +
-                                             fs::path(f.second).filename().string() +
-                                             "): which are the scans?");
+                    throw std::runtime_error(
+                        "'" + folder + "' holds scans of two kinds (" + first.filename().string() +
+                        ", " + fs::path(f.second).filename().string() + "): which are the scans?");
         };
         if (!found.files.empty())
         {
@@ -64,11 +78,11 @@ public:
         {
             // Clouds named by their time (a bag exported with pcl_ros's bag_to_pcd), posed by
             // the trajectory's times.
-            const TimedFiles timed = timedFiles(folder, {".pcd", ".ply"});
+            const TimedFiles timed = timedFiles(folder, kCloudExtensions);
             if (timed.files.empty())
                 throw std::runtime_error(
                     "'" + folder +
-                    "' has no scan (clouds named by their number, NNNNNN.pcd or NNNNNN.ply, or "
+                    "' has no scan (clouds named by their number, NNNNNN.pcd, .ply or .bin, or "
                     "by their time, 1317022176.580342102.pcd)" +
                     (found.other.empty() ? "" : "; it holds " + listNames(found.other)));
             oneKind(timed.files);
@@ -96,7 +110,7 @@ public:
         }
         if (!found.other.empty())
             warnings_.push_back("'" + folder + "' holds " + std::to_string(found.other.size()) +
-                                " file(s) not named as scans (NNNNNN.pcd or NNNNNN.ply, or by "
+                                " file(s) not named as scans (NNNNNN.pcd, .ply or .bin, or by "
                                 "their time), left out: " +
                                 listNames(found.other));
     }
@@ -105,8 +119,7 @@ public:
     {
         if (pos_ >= entries_.size()) return false;
         const Entry& e = entries_[pos_++];
-        io::PcdCloud cloud =
-            fs::path(e.file).extension() == ".pcd" ? io::readPcd(e.file) : io::readPly(e.file);
+        io::PcdCloud cloud = readCloud(e.file);
         if (cloud.has_viewpoint && !cloud.viewpoint.isApprox(Eigen::Isometry3d::Identity()))
             throw std::runtime_error(
                 "'" + e.file +

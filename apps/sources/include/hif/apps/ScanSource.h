@@ -111,7 +111,7 @@ std::unique_ptr<ScanSource> openRawlog(const std::string& file, bool poses_requi
 std::unique_ptr<ScanSource> openSimpleMap(const std::string& file);
 std::unique_ptr<ScanSource> openDynamicMapFolder(const std::string& folder);
 std::unique_ptr<ScanSource> openKittiFolder(const std::string& folder);
-/** Clouds in the sensor frame, NNNNNN.pcd or NNNNNN.ply in `folder`, at the poses of
+/** Clouds in the sensor frame, NNNNNN.pcd, .ply or .bin (KITTI's) in `folder`, at the poses of
  *  `poses_file` (hif::io::readTrajectory()): the k-th scan (by number) takes the k-th pose when
  *  the counts agree, else scan NNNNNN takes pose NNNNNN (a trajectory longer than the folder);
  *  or clouds named by their time, at the poses of those times (hif::io::poseAt()). With an
