@@ -48,7 +48,7 @@ std::string defaultConfig(bool online, bool dynamicmap)
 struct Run
 {
     std::string input, out_dir, cfg_file, section;
-    hif::apps::FolderPoses poses;  ///< --poses and --extrinsic
+    hif::apps::FolderPoses poses;  ///< --poses, --extrinsic and --world-frame
     bool online = false, hold_scans = false, show_progress = true;
     std::unique_ptr<hif::apps::ScanSource> source;
     std::string dm_output;  ///< <folder>/hif_output.pcd for a DynamicMap folder, else empty

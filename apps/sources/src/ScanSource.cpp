@@ -34,8 +34,7 @@ const char* const kInputsRead =
     "hif-clean reads a sequence of scans with their poses: a KITTI sequence folder "
     "(velodyne/), a DynamicMap benchmark folder (pcd/), a folder of clouds in the sensor frame "
     "(NNNNNN.pcd, .ply or .bin) with poses.txt (KITTI or TUM format; or --poses FILE), an MRPT "
-    "rawlog "
-    "or a .simplemap";
+    "rawlog or a .simplemap";
 
 /** The poses of a folder of clouds: `poses` when given, else its poses.txt; empty if neither. */
 std::string posesOf(const fs::path& folder, const std::string& poses)
