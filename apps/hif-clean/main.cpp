@@ -34,7 +34,8 @@ struct Cli
         "sensor's "
         "pose in the world for each, KITTI or TUM format), as LiDAR SLAM systems write them; "
         "clouds named by their time (1317022176.580342102.pcd, as a bag exported cloud by "
-        "cloud) take the pose of their time in a TUM trajectory",
+        "cloud) take the pose of their time in a TUM trajectory; or hdl_graph_slam's saved "
+        "keyframes (NNNNNN/data and cloud.pcd)",
         true,
         "",
         "in.rawlog|in.simplemap|folder",

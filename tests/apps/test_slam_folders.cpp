@@ -446,6 +446,60 @@ TEST(SlamFolders, AnExtrinsicPutsTheLidarWhereAnImusTrajectorySays)
         "--world-frame is for a folder of clouds; '" + dir + "' is a KITTI sequence");
 }
 
+// hdl_graph_slam saves its keyframes (interactive_slam reads them) as NNNNNN/cloud.pcd and
+// NNNNNN/data, the optimized pose printed by Eigen to 6 significant digits: read as they are,
+// they give the KITTI folder's classes but for the points those digits move; a flag of a
+// folder of clouds is refused, and a keyframe without its cloud is named.
+TEST(SlamFolders, HdlGraphSlamKeyframesAreScansAtTheirEstimates)
+{
+    const std::string dir = hif::test::kittiRoot() + "/sequences/04";
+    HIF_REQUIRE_KITTI_SEQUENCE(dir);
+    const WorkDir work = workDir("slam_keyframes_" + std::to_string(getpid()));
+    const std::string& w = work.path();
+    const hif::io::KittiSequence seq(dir);
+    for (std::size_t i = 0; i < seq.size(); ++i)
+    {
+        const std::string k = w + "/keyframes/" + hif::io::frameName(i);
+        fs::create_directories(k);
+        const hif::io::Cloud c = seq.readScan(i);
+        hif::io::CloudWriter cw({k + "/cloud.pcd"});
+        for (std::size_t j = 0; j < c.size(); ++j) cw.add(c.x[j], c.y[j], c.z[j], c.intensity[j]);
+        cw.close();
+        std::ofstream data(k + "/data");
+        const double t = 1317022176.0 + seq.time(i);
+        data << "stamp " << static_cast<long long>(t) << " "
+             << std::llround((t - std::floor(t)) * 1e9) << "\n"
+             << "estimate\n"
+             << seq.pose(i).matrix() << "\n"
+             << "odom\n"
+             << seq.pose(i).matrix() << "\n"
+             << "accum_distance 0\nid " << i << "\n";
+    }
+    Result r = clean(dir, w + "/kitti_out");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto reference = predictions(w + "/kitti_out", seq.size());
+    r = clean(w + "/keyframes", w + "/keyframes_out");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const auto got = predictions(w + "/keyframes_out", seq.size());
+    ASSERT_EQ(got.size(), reference.size());
+    std::size_t differ = 0;
+    for (std::size_t i = 0; i < got.size(); ++i) differ += got[i] != reference[i];
+    // The poses' 6 digits: a point on a cell's border may change sides (1 of 1,234,476 did).
+    EXPECT_LE(differ, reference.size() / 100000) << differ << " of " << reference.size();
+
+    expectError(hif::test::clean(w + "/keyframes", w + "/o1",
+                                 [&](hif::jobs::CleanOptions& o) { o.world_frame = true; }),
+                "--world-frame is for a folder of clouds; '" + w +
+                    "/keyframes' is a keyframe (hdl_graph_slam) folder");
+    fs::remove(w + "/keyframes/000003/cloud.pcd");
+    expectError(
+        clean(w + "/keyframes", w + "/o2"),
+        "keyframes/000003/cloud.pcd' does not exist (a keyframe's points, beside its data)");
+    fs::copy_file(w + "/keyframes/000002/cloud.pcd", w + "/keyframes/000003/cloud.pcd");
+    std::ofstream(w + "/keyframes/000004/data") << "stamp 1 2\nodom\n";
+    expectError(clean(w + "/keyframes", w + "/o3"), "has no estimate");
+}
+
 TEST(SlamFolders, PosesThatDoNotBelongToTheScansAreWarnedAboutAtTheStart)
 {
     const std::string dir = hif::test::kittiRoot() + "/sequences/04";
@@ -511,7 +565,7 @@ TEST(SlamFolders, WrongFoldersAndTrajectoriesAreNamed)
     expectError(clean(w + "/scans/000000.pcd", w + "/o1"),
                 "is one point cloud (pcd), without a pose");
     // A folder of clouds without poses.
-    expectError(clean(w + "/scans", w + "/o2"), "neither velodyne/, pcd/ nor poses.txt");
+    expectError(clean(w + "/scans", w + "/o2"), "neither velodyne/, pcd/, poses.txt nor keyframes");
     // Fewer poses than clouds.
     expectError(clean(w + "/scans", w + "/o3", write("two.txt", id + id)),
                 "has 2 poses for the 3 scans");

@@ -461,7 +461,7 @@ TEST_F(SyntheticPipeline, KittiAndDynamicMapFoldersGiveTheRawlogsResult)
     // A folder that is neither layout is named as such; a bad --format is refused.
     fs::create_directories(root_ + "/neither");
     r = runApp("hif-clean", "-i " + root_ + "/neither -o " + root_ + "/neither/out");
-    expectError(r, "is a folder with neither velodyne/, pcd/ nor poses.txt");
+    expectError(r, "is a folder with neither velodyne/, pcd/, poses.txt nor keyframes");
     r = runApp("hif-clean", "-i " + root_ + "/seq -o " + root_ + "/bad_format --format las");
     expectError(r, "--format");
     EXPECT_FALSE(fs::exists(root_ + "/bad_format"));

@@ -33,8 +33,8 @@ namespace
 const char* const kInputsRead =
     "hif-clean reads a sequence of scans with their poses: a KITTI sequence folder "
     "(velodyne/), a DynamicMap benchmark folder (pcd/), a folder of clouds in the sensor frame "
-    "(NNNNNN.pcd, .ply or .bin) with poses.txt (KITTI or TUM format; or --poses FILE), an MRPT "
-    "rawlog or a .simplemap";
+    "(NNNNNN.pcd, .ply or .bin) with poses.txt (KITTI or TUM format; or --poses FILE), "
+    "hdl_graph_slam's keyframes (NNNNNN/data and cloud.pcd), an MRPT rawlog or a .simplemap";
 
 /** The poses of a folder of clouds: `poses` when given, else its poses.txt; empty if neither. */
 std::string posesOf(const fs::path& folder, const std::string& poses)
@@ -56,17 +56,23 @@ std::unique_ptr<ScanSource> openSource(const std::string& path, bool poses_requi
     {
         const bool kitti = fs::is_directory(p / "velodyne"),
                    dynamicmap = fs::is_directory(p / "pcd");
-        if (*flag && (kitti || dynamicmap))
+        const std::string trajectory = posesOf(p, poses.trajectory);
+        const bool keyframes =
+            !kitti && !dynamicmap && trajectory.empty() && isKeyframesFolder(path);
+        if (*flag && (kitti || dynamicmap || keyframes))
             throw std::runtime_error(std::string(flag) + " is for a folder of clouds; '" + path +
                                      "' is a " +
-                                     (kitti ? "KITTI sequence" : "DynamicMap benchmark") +
+                                     (kitti        ? "KITTI sequence"
+                                      : dynamicmap ? "DynamicMap benchmark"
+                                                   : "keyframe (hdl_graph_slam)") +
                                      " folder, which holds its own poses");
         if (kitti) return openKittiFolder(path);
         if (dynamicmap) return openDynamicMapFolder(path);
-        const std::string trajectory = posesOf(p, poses.trajectory);
+        if (keyframes) return openKeyframesFolder(path);
         if (!trajectory.empty()) return openScansWithPoses(path, trajectory, poses);
         throw std::runtime_error("'" + path +
-                                 "' is a folder with neither velodyne/, pcd/ nor poses.txt; " +
+                                 "' is a folder with neither velodyne/, pcd/, poses.txt nor "
+                                 "keyframes; " +
                                  kInputsRead);
     }
     if (!fs::exists(p)) throw std::runtime_error("input '" + path + "' does not exist");

@@ -120,6 +120,12 @@ std::unique_ptr<ScanSource> openKittiFolder(const std::string& folder);
 std::unique_ptr<ScanSource> openScansWithPoses(const std::string& folder,
                                                const std::string& poses_file,
                                                const FolderPoses& poses = {});
+/** hdl_graph_slam's saved keyframes (interactive_slam reads them too): a subfolder per keyframe,
+ *  NNNNNN/cloud.pcd in the keyframe's frame and NNNNNN/data with its time and its optimized
+ *  pose (`estimate`, a 4x4 matrix). */
+std::unique_ptr<ScanSource> openKeyframesFolder(const std::string& folder);
+/** Whether `folder` holds such keyframes (a numbered subfolder with a `data` file). */
+[[nodiscard]] bool isKeyframesFolder(const std::string& folder);
 /** `source`, its next scan read (and given to `prepare`, if set) on a second thread while the
  *  caller works on the current one. */
 std::unique_ptr<ScanSource> readingAhead(std::unique_ptr<ScanSource> source,
