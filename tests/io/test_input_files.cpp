@@ -184,6 +184,13 @@ TEST(ReadPcd, AsciiNanIsAnInvalidPointAndFloat64KeepsTheMillimetres)
     EXPECT_NEAR(u.point(1).x(), 630124.0001, 1e-6);
     EXPECT_NEAR(u.point(1).z(), 250.5, 1e-6);
     EXPECT_EQ(u.intensity[1], 0.25f);
+    // As float32 coordinates of their own (a sensor-frame cloud's): the same points, rounded.
+    hif::io::PcdCloud f = u;
+    hif::io::absorbOrigin(f);
+    EXPECT_TRUE(f.origin.isZero(0.0));
+    EXPECT_EQ(f.x[0], static_cast<float>(u.point(0).x()));
+    EXPECT_EQ(f.y[1], static_cast<float>(u.point(1).y()));
+    EXPECT_EQ(f.z[1], 250.5f);
 }
 
 // A binary body is read in chunks of records: every point of a cloud of several chunks (and a

@@ -109,14 +109,7 @@ public:
         const auto& [number, dir] = folders_[pos_++];
         const KeyframeData d = readKeyframeData((dir / "data").string());
         io::PcdCloud cloud = io::readPcd((dir / "cloud.pcd").string());
-        if (!cloud.origin.isZero(0.0))
-            for (std::size_t i = 0; i < cloud.size(); ++i)
-            {
-                const Eigen::Vector3d p = cloud.point(i);
-                cloud.x[i] = static_cast<float>(p.x());
-                cloud.y[i] = static_cast<float>(p.y());
-                cloud.z[i] = static_cast<float>(p.z());
-            }
+        io::absorbOrigin(cloud);
         out.obs = pointCloudObservation(cloud);
         if (d.has_time) out.obs->timestamp = mrpt::Clock::fromDouble(d.time);
         out.robot_pose = mrpt::poses::CPose3D::FromHomogeneousMatrix(d.pose.matrix());

@@ -140,14 +140,8 @@ public:
             cloud.viewpoint = e.pose;
             io::toViewpointFrame(cloud);
         }
-        else if (!cloud.origin.isZero(0.0))
-            for (std::size_t i = 0; i < cloud.size(); ++i)
-            {
-                const Eigen::Vector3d p = cloud.point(i);
-                cloud.x[i] = static_cast<float>(p.x());
-                cloud.y[i] = static_cast<float>(p.y());
-                cloud.z[i] = static_cast<float>(p.z());
-            }
+        else
+            io::absorbOrigin(cloud);
         out.obs = pointCloudObservation(cloud);
         if (e.time) out.obs->timestamp = mrpt::Clock::fromDouble(*e.time);
         out.robot_pose = mrpt::poses::CPose3D::FromHomogeneousMatrix(e.pose.matrix());

@@ -312,6 +312,19 @@ PcdCloud readPcd(const std::string& file)
     return out;
 }
 
+void absorbOrigin(PcdCloud& pcd)
+{
+    if (pcd.origin.isZero(0.0)) return;
+    for (std::size_t i = 0; i < pcd.size(); ++i)
+    {
+        const Eigen::Vector3d p = pcd.point(i);
+        pcd.x[i] = static_cast<float>(p.x());
+        pcd.y[i] = static_cast<float>(p.y());
+        pcd.z[i] = static_cast<float>(p.z());
+    }
+    pcd.origin.setZero();
+}
+
 void toViewpointFrame(PcdCloud& pcd)
 {
     // inv * point(i), in double (a wide file's origin added back first: UTM keeps its

@@ -244,6 +244,11 @@ struct PcdCloud : Cloud
  *  naming the file and the problem (big-endian data, no x y z, a truncated body). */
 [[nodiscard]] PcdCloud readPly(const std::string& file);
 
+/** The points of `pcd` as float32 coordinates of their own, in place: point(i) (the file's
+ *  float64 coordinates, through `origin`) for each, `origin` then zero. For a cloud in a
+ *  sensor's frame, whose coordinates float32 holds to well under a millimetre. */
+void absorbOrigin(PcdCloud& pcd);
+
 /** The points of `pcd` (world frame) in the frame of its VIEWPOINT, in place: point i becomes
  *  inverse(viewpoint) * point(i), computed in double; `origin` becomes zero. */
 void toViewpointFrame(PcdCloud& pcd);
