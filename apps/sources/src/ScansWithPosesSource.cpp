@@ -45,11 +45,10 @@ class ScansWithPosesSource : public ScanSource
 public:
     ScansWithPosesSource(const std::string& folder, const std::string& poses_file,
                          const FolderPoses& poses)
-        : poses_file_(poses_file),
-          trajectory_(io::readTrajectory(poses_file)),
-          extrinsic_(poses.extrinsic),
-          world_frame_(poses.world_frame)
+        : extrinsic_(poses.extrinsic), world_frame_(poses.world_frame)
     {
+        // Read here: the scans keep their poses (entries_), not the trajectory.
+        const io::Trajectory trajectory = io::readTrajectory(poses_file);
         NumberedFiles found = numberedFiles(folder, kCloudExtensions);
         // The trajectory file may be in the folder: it is not a stray file.
         std::error_code ec;
@@ -72,7 +71,7 @@ public:
         if (!found.files.empty())
         {
             oneKind(found.files);
-            byNumber(folder, found.files);
+            byNumber(folder, poses_file, trajectory, found.files);
         }
         else
         {
@@ -86,19 +85,17 @@ public:
                     "by their time, 1317022176.580342102.pcd)" +
                     (found.other.empty() ? "" : "; it holds " + listNames(found.other)));
             oneKind(timed.files);
-            byTime(folder, timed.files);
+            byTime(folder, poses_file, trajectory, timed.files);
             if (timed.nanoseconds_unpadded)
+            {
+                char at[40];
+                std::snprintf(at, sizeof at, "%.9f s", timed.files.front().first);
                 warnings_.push_back(
                     "the clouds of '" + folder +
                     "' are named <seconds>.<nanoseconds> without the nanoseconds' leading zeros "
                     "(ROS 2's pointcloud_to_pcd), and read so: " +
-                    fs::path(timed.files.front().second).filename().string() + " is at " +
-                    [&]
-                    {
-                        char t[40];
-                        std::snprintf(t, sizeof t, "%.9f s", timed.files.front().first);
-                        return std::string(t);
-                    }());
+                    fs::path(timed.files.front().second).filename().string() + " is at " + at);
+            }
             std::vector<std::string> timed_names;
             for (const auto& [time, file] : timed.files)
                 timed_names.push_back(fs::path(file).filename().string());
@@ -176,27 +173,28 @@ private:
     /** Clouds named by their number: one pose a scan, in order; a trajectory longer than the
      *  folder (scans left out, as KITTI's poses.txt for a part of a sequence) is read by the
      *  scans' numbers. */
-    void byNumber(const std::string& folder,
+    void byNumber(const std::string& folder, const std::string& poses_file,
+                  const io::Trajectory& trajectory,
                   const std::vector<std::pair<std::size_t, std::string>>& files)
     {
-        const bool by_number = trajectory_.size() != files.size();
-        const std::size_t n = trajectory_.size();
+        const bool by_number = trajectory.size() != files.size();
+        const std::size_t n = trajectory.size();
         if (by_number)
         {
             if (n < files.size())
-                throw std::runtime_error("'" + poses_file_ + "' has " + std::to_string(n) +
+                throw std::runtime_error("'" + poses_file + "' has " + std::to_string(n) +
                                          " poses for the " + std::to_string(files.size()) +
                                          " scans of '" + folder +
                                          "' (one pose a scan, in the order of their numbers)");
             for (const auto& [number, file] : files)
                 if (number >= n)
-                    throw std::runtime_error("'" + poses_file_ + "' has " + std::to_string(n) +
+                    throw std::runtime_error("'" + poses_file + "' has " + std::to_string(n) +
                                              " poses for the " + std::to_string(files.size()) +
                                              " scans of '" + folder + "', and none for " +
                                              fs::path(file).filename().string() +
                                              " (pose lines are read by the scan's "
                                              "number when there are more poses than scans)");
-            warnings_.push_back("'" + poses_file_ + "' has " + std::to_string(n) + " poses for " +
+            warnings_.push_back("'" + poses_file + "' has " + std::to_string(n) + " poses for " +
                                 std::to_string(files.size()) +
                                 " scans: scan NNNNNN takes pose line NNNNNN+1");
         }
@@ -205,9 +203,9 @@ private:
             const auto& [number, file] = files[k];
             const std::size_t row = by_number ? number : k;
             std::optional<double> time;
-            if (!trajectory_.times.empty()) time = trajectory_.times[row];
+            if (!trajectory.times.empty()) time = trajectory.times[row];
             entries_.push_back(
-                {number, file, lidarPose(trajectory_.poses[row]), time, std::nullopt});
+                {number, file, lidarPose(trajectory.poses[row]), time, std::nullopt});
         }
     }
 
@@ -215,19 +213,21 @@ private:
      *  the pose of that time, else interpolated between the two around it when they are at most
      *  twice the trajectory's median spacing apart: a gap in it is not bridged). Its outputs
      *  take its name; those without a pose are left out, and named. */
-    void byTime(const std::string& folder, const std::vector<std::pair<double, std::string>>& files)
+    void byTime(const std::string& folder, const std::string& poses_file,
+                const io::Trajectory& trajectory,
+                const std::vector<std::pair<double, std::string>>& files)
     {
         const std::string first = fs::path(files.front().second).filename().string();
-        if (trajectory_.times.empty())
+        if (trajectory.times.empty())
             throw std::runtime_error("'" + folder + "' holds clouds named by their time (" + first +
                                      "), which need a trajectory with times, the TUM format "
                                      "(time x y z qx qy qz qw), but '" +
-                                     poses_file_ + "' is in the KITTI format");
-        const double spacing = io::medianSpacing(trajectory_);
+                                     poses_file + "' is in the KITTI format");
+        const double spacing = io::medianSpacing(trajectory);
         std::vector<std::string> left_out;
         for (const auto& [time, file] : files)
         {
-            const auto pose = io::poseAt(trajectory_, time, 2.0 * spacing);
+            const auto pose = io::poseAt(trajectory, time, 2.0 * spacing);
             if (!pose)
             {
                 left_out.push_back(fs::path(file).filename().string());
@@ -240,23 +240,21 @@ private:
         std::snprintf(span, sizeof span,
                       "its poses run from %.6f to %.6f s, %.3f s apart (median), the clouds' from "
                       "%.6f to %.6f s",
-                      trajectory_.times.front(), trajectory_.times.back(), spacing,
+                      trajectory.times.front(), trajectory.times.back(), spacing,
                       files.front().first, files.back().first);
         if (entries_.empty())
             throw std::runtime_error("none of the " + std::to_string(files.size()) +
-                                     " clouds of '" + folder + "' has a pose in '" + poses_file_ +
+                                     " clouds of '" + folder + "' has a pose in '" + poses_file +
                                      "': " + span);
         if (!left_out.empty())
             warnings_.push_back(std::to_string(left_out.size()) + " of the " +
                                 std::to_string(files.size()) + " clouds of '" + folder +
-                                "' have no pose in '" + poses_file_ +
+                                "' have no pose in '" + poses_file +
                                 "' (before its first pose, after its last, or in a gap of more "
                                 "than twice its spacing; " +
                                 span + "), left out: " + listNames(left_out));
     }
 
-    std::string poses_file_;
-    io::Trajectory trajectory_;
     /** FolderPoses::extrinsic: each scan at pose x extrinsic, after any interpolation of the
      *  trajectory's pose (lidarPose()). */
     std::optional<Eigen::Isometry3d> extrinsic_;
