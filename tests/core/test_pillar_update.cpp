@@ -762,6 +762,27 @@ TEST(SeeThroughMisses, APaddingSliverUnderTheGroundLeavesTheGroundAFloor)
     EXPECT_FALSE(staticAfterSeeThrough(above, 0.3, 0.6));
 }
 
+TEST(SeeThroughMisses, TheGroundSeenAgainALittleHigherStaysPartOfTheFloor)
+{
+    // Ground seen at -1.70..-1.65 m (cell -34) padded by 8 cells, [-42, -25), and seen again
+    // by other scans: a cell higher (-1.65..-1.60 m, in the padding above it) and a little
+    // lower, so the pieces differ in log-odds. A beam passing 0.25 m above the ground (cell
+    // -29) crosses the upper padding: it empties the heights it crossed, not the ground seen
+    // a cell higher in the same piece.
+    const std::vector<Interval> seen_again{iv(-42, -35, 0.56), iv(-35, -33, 0.64),
+                                           iv(-33, -25, 0.56)};
+    EXPECT_TRUE(staticAfterSeeThrough(seen_again, -1.45, -1.63)) << "the ground seen higher";
+    EXPECT_TRUE(staticAfterSeeThrough(seen_again, -1.45, -1.68)) << "the ground";
+    EXPECT_FALSE(staticAfterSeeThrough(seen_again, -1.45, -1.45)) << "the heights it crossed";
+    // A beam through the ground itself shows all of the floor gone.
+    EXPECT_FALSE(staticAfterSeeThrough(seen_again, -1.68, -1.63));
+    // What stands on the ground reaches above one sighting of it: an object, all of it gone
+    // when a beam passes through any part of it (a walker's legs, a car's sill).
+    const std::vector<Interval> standing{iv(-42, -35, 0.56), iv(-35, -33, 0.64), iv(-33, 0, 0.56)};
+    EXPECT_FALSE(staticAfterSeeThrough(standing, -1.45, -1.63));
+    EXPECT_TRUE(staticAfterSeeThrough(standing, -1.45, -1.68)) << "the ground under it";
+}
+
 namespace
 {
 /** A wall from -1.5 m to 1.5 m in pillar (20, 0), hit by a dense scan, under a sparse model

@@ -179,12 +179,24 @@ struct BeamGate
      *  floorOrObject(): the lowest, and above it the next while each is a sliver of padding
      *  under the next (seen once, no wider than its padding, touching the next, which lies
      *  below the sensor). A later scan that saw the ground a little lower adds such a sliver
-     *  under it, which would otherwise make the ground itself an object. */
+     *  under it, which would otherwise make the ground itself an object. Then on up through
+     *  the touching intervals below the sensor that end within one sighting of the ground
+     *  from the floor's bottom (twice the padding at the pillar's distance, and a cell): the
+     *  padding above the ground seen there, and the ground seen a few centimetres higher by
+     *  another scan, whose log-odds differ. As objects, a beam skimming the ground across
+     *  the pillar would show all of them gone, the ground seen in them with them; what
+     *  stands on the ground reaches above a sighting of it. */
     [[nodiscard]] std::size_t floorTop(const Interval* iv, std::size_t n) const
     {
         std::size_t top = 0;
         while (top + 1 < n && iv[top].hi == iv[top + 1].lo && iv[top].logodds <= seen_once &&
                iv[top].hi - iv[top].lo <= widthsOf(iv[top].lo, iv[top].hi).pad &&
+               iv[top + 1].hi * res <= sensor_z)
+            ++top;
+        if (n == 0) return top;
+        const int64_t sighting_top =
+            int64_t{iv[0].lo} + 2 * int64_t{widthsOf(iv[0].lo, iv[0].hi).pad} + 1;
+        while (top + 1 < n && iv[top].hi == iv[top + 1].lo && iv[top + 1].hi <= sighting_top &&
                iv[top + 1].hi * res <= sensor_z)
             ++top;
         return top;
