@@ -193,6 +193,21 @@ TEST(Trajectory, KittiAndTumFilesGiveTheSamePoses)
 // A scan's pose by its time: the pose of that time (to kSameTime), else the two around it
 // interpolated (position linearly, rotation by slerp: a quarter turn half-way is an eighth),
 // never across a gap wider than asked, nor before the first pose or after the last.
+TEST(Trajectory, AnExtrinsicsSevenNumbersReadBackAsThePose)
+{
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()).matrix();
+    pose.translation() = Eigen::Vector3d(0.1, -0.25, 1.5);
+    const auto n = hif::io::xyzQxyzw(pose);
+    EXPECT_EQ(n[0], 0.1);
+    EXPECT_EQ(n[1], -0.25);
+    EXPECT_EQ(n[2], 1.5);
+    std::ostringstream text;
+    text.precision(17);
+    for (const double v : n) text << v << ' ';
+    EXPECT_TRUE(hif::io::parseExtrinsic(text.str()).isApprox(pose, 1e-12)) << text.str();
+}
+
 TEST(Trajectory, APoseAtATimeIsThePoseThenOrTheTwoAroundItInterpolated)
 {
     hif::io::Trajectory tr;

@@ -156,10 +156,9 @@ void setUp(const CleanOptions& o, Run& run)
 /** A pose as --extrinsic takes it: "x y z qx qy qz qw". */
 std::string describePose(const Eigen::Isometry3d& T)
 {
-    const Eigen::Quaterniond q(T.linear());
     std::ostringstream s;
-    s << T.translation().x() << ' ' << T.translation().y() << ' ' << T.translation().z() << ' '
-      << q.x() << ' ' << q.y() << ' ' << q.z() << ' ' << q.w();
+    const char* sep = "";
+    for (const double v : hif::io::xyzQxyzw(T)) s << std::exchange(sep, " ") << v;
     return s.str();
 }
 

@@ -119,9 +119,9 @@ TimedFiles timedFiles(const std::string& folder, const std::vector<std::string>&
     const bool nanoseconds = longest == 9 && shortest < 9;
     for (const Candidate& c : found)
     {
-        const double fraction = c.fraction.size() > 9 ? std::stod("0." + c.fraction)
-                                : nanoseconds         ? 1e-9 * double(std::stoull(c.fraction))
-                                                      : std::stod("0." + c.fraction);
+        // (With nanoseconds, no fraction has more than 9 digits.)
+        const double fraction =
+            nanoseconds ? 1e-9 * double(std::stoull(c.fraction)) : std::stod("0." + c.fraction);
         out.files.emplace_back(double(std::stoull(c.seconds)) + fraction, c.path);
     }
     out.nanoseconds_unpadded = nanoseconds;

@@ -112,6 +112,13 @@ Eigen::Isometry3d parseExtrinsic(const std::string& text)
     return parseTum(tokens, what, where, nullptr);
 }
 
+std::array<double, 7> xyzQxyzw(const Eigen::Isometry3d& pose)
+{
+    const Eigen::Quaterniond q(pose.linear());
+    const Eigen::Vector3d& t = pose.translation();
+    return {t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()};
+}
+
 std::optional<Eigen::Isometry3d> poseAt(const Trajectory& tr, double t, double max_gap)
 {
     const std::vector<double>& times = tr.times;

@@ -12,6 +12,8 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "hif/io/Trajectory.h"
+
 namespace
 {
 /** Every field of a settings struct, by its table (hif/FieldTable.h). */
@@ -35,12 +37,7 @@ void writeSummary(const std::string& file, const SummaryInfo& info,
     else
     {
         nlohmann::ordered_json extrinsic = nullptr;
-        if (info.extrinsic)
-        {
-            const Eigen::Quaterniond q(info.extrinsic->linear());
-            const Eigen::Vector3d& at = info.extrinsic->translation();
-            extrinsic = {at.x(), at.y(), at.z(), q.x(), q.y(), q.z(), q.w()};
-        }
+        if (info.extrinsic) extrinsic = hif::io::xyzQxyzw(*info.extrinsic);
         j["poses"] = {{"trajectory", info.trajectory},
                       {"extrinsic_xyz_qxyzw", extrinsic},
                       {"world_frame", info.world_frame}};

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Geometry>
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -54,6 +55,9 @@ constexpr double kSameTime = 1e-4;
  *  the TUM order), or 12, the 3x4 matrix [R | t] row by row (a rigid motion). Throws
  *  std::runtime_error naming "--extrinsic", the text and the problem. */
 [[nodiscard]] Eigen::Isometry3d parseExtrinsic(const std::string& text);
+
+/** The 7 numbers of `pose` that parseExtrinsic() reads: x y z qx qy qz qw (the TUM order). */
+[[nodiscard]] std::array<double, 7> xyzQxyzw(const Eigen::Isometry3d& pose);
 
 /** Reads `file`, its format told by its first pose line (12 or 8 numbers); empty lines and
  *  lines starting with '#' are skipped. Every pose is checked as KittiSequence checks poses.txt
