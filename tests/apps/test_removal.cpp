@@ -205,14 +205,15 @@ TEST(Traffic, CarsLeadingTheSensorAreRemovedOnline)
     const json offline = cleanAndScore(seq, "offline");
     const json online = cleanAndScore(seq, "online", onlineMode);
     auto da = [](const json& s) { return s["per_moving_class"]["moving-car"]["DA"].get<double>(); };
-    // Measured: DA 98.6 offline; online 83.1 (78.3 before the constant-speed rule).
+    // Measured: DA 98.6 offline; online 86.3 (83.1 when the constant-speed rule needed three
+    // scans of past, 78.3 before that rule).
     for (const json* s : {&offline, &online})
     {
         EXPECT_GE((*s)["total"]["SA"].get<double>(), 99.2);
         EXPECT_GT((*s)["per_moving_class"]["moving-car"]["dynamic_total"].get<int>(), 5000);
     }
     EXPECT_GE(da(offline), 95.0);
-    EXPECT_GE(da(online), 81.0);
+    EXPECT_GE(da(online), 84.5);
 }
 
 class RealKitti : public ::testing::TestWithParam<std::tuple<std::string, double, double>>

@@ -263,8 +263,10 @@ WithAndWithout classifyWithAndWithout(const PillarGrid& grid, const FreeSpaceTes
 }
 
 /** Online with `prm`: each of `scans` inserted, then classified with the past only, without the
- *  free-space test and with it (a test holding the scans before it). */
-WithAndWithout onlineWithAndWithout(const std::vector<Scan>& scans, const Params& prm)
+ *  free-space test and with it (a test holding the scans before it); each scan's own into
+ *  `per_scan` when given. */
+WithAndWithout onlineWithAndWithout(const std::vector<Scan>& scans, const Params& prm,
+                                    std::vector<WithAndWithout>* per_scan = nullptr)
 {
     PillarGrid grid(GridGeometry(), prm);
     FreeSpaceTest past(FreeSpaceTest::capacityFor(prm));
@@ -277,6 +279,12 @@ WithAndWithout onlineWithAndWithout(const std::vector<Scan>& scans, const Params
         grid.classify(s.view(), dyn_map, s.pose);
         r.with.add(s, dyn);
         r.without.add(s, dyn_map);
+        if (per_scan)
+        {
+            per_scan->emplace_back();
+            per_scan->back().with.add(s, dyn);
+            per_scan->back().without.add(s, dyn_map);
+        }
         past.add(s.view(), s.pose, kLayout);
     }
     return r;
@@ -728,7 +736,7 @@ TEST(MinRange, NearPointsAreNotInsertedAndAreDynamic)
 // That is a surface moving along the beams at a constant speed, found from the third scan with
 // a past; a static surface hidden from other places keeps its offset. (The van is labelled as
 // the helper's box, kPerson.)
-TEST(FreeSpaceTest, AVanDrivingAheadIsShownByItsConstantSpeedAlongTheBeams)
+std::vector<Scan> vanAheadScans()
 {
     std::vector<Scan> scans;
     constexpr double kStep = 1.3;  // metres a scan, the sensor's and the van's
@@ -744,12 +752,23 @@ TEST(FreeSpaceTest, AVanDrivingAheadIsShownByItsConstantSpeedAlongTheBeams)
                                 [&](const Eigen::Vector3d& d, double& range)
                                 { return groundWallAndPerson(o, d, 80.0, van, range); }));
     }
+    return scans;
+}
+
+Params vanAheadParams()
+{
     Params prm = freeSpaceParams();
     prm.online = true;
     prm.p_empty_init = 0.5;  // kitti-online.ini's
-    const auto [without, with] = onlineWithAndWithout(scans, prm);
+    return prm;
+}
+
+TEST(FreeSpaceTest, AVanDrivingAheadIsShownByItsConstantSpeedAlongTheBeams)
+{
+    const auto [without, with] = onlineWithAndWithout(vanAheadScans(), vanAheadParams());
     // Measured: the map alone removes 30 % of the van (the test as well, before this rule),
-    // the test 68.9 % (every scan from the fourth, which has three scans of past).
+    // the test 78.4 % (every scan from the third, which has two scans of past; 68.9 % when
+    // three were needed).
     EXPECT_GT(with.n[kPerson], 1000u);
     EXPECT_GE(with.pct(kPerson), 60.0);
     EXPECT_GE(with.pct(kPerson), without.pct(kPerson) + 30.0);
@@ -757,6 +776,27 @@ TEST(FreeSpaceTest, AVanDrivingAheadIsShownByItsConstantSpeedAlongTheBeams)
     {
         EXPECT_GT(with.n[w], 1000u);
         EXPECT_EQ(with.removed[w], without.removed[w]) << "kind " << int(w);
+    }
+}
+
+// The same van, online, scan by scan: the third scan has two scans of past, whose beams toward
+// the van's back returned one and two steps in front of it. An offset that stays the same cannot
+// be twice itself, so two such judges show the van moving; the ground and the wall, which
+// nothing hides, stay.
+TEST(FreeSpaceTest, TwoScansOfPastShowAVanDrivingAhead)
+{
+    std::vector<WithAndWithout> per_scan;
+    onlineWithAndWithout(vanAheadScans(), vanAheadParams(), &per_scan);
+    ASSERT_EQ(per_scan.size(), 10u);
+    const WithAndWithout& third = per_scan[2];
+    // Measured: 94.7 % of the van (0 % with three judges needed, as before; the map alone 0 %).
+    EXPECT_GT(third.with.n[kPerson], 500u);
+    EXPECT_EQ(third.without.removed[kPerson], 0u);
+    EXPECT_GE(third.with.pct(kPerson), 90.0);
+    for (const What w : {kGround, kWall})
+    {
+        EXPECT_GT(third.with.n[w], 100u);
+        EXPECT_EQ(third.with.removed[w], third.without.removed[w]) << "kind " << int(w);
     }
 }
 

@@ -661,6 +661,12 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         // judge to judge (or changes with the view), not a multiple of the time since the
         // point was seen, from nothing, at the classified scan. The test keeps consecutive
         // scans of the sensor, so scans are a constant time apart.
+        // Two judges are enough when the second returned n steps in front to within the
+        // margin's share for range noise and pose error (half its base, as for a drift's
+        // size): an offset that stays the same cannot be twice itself and beyond the margin,
+        // and one that changes with the view (a surface met at grazing incidence, foliage)
+        // lands that close to the multiple only by chance. Online, the third scan of a run has
+        // two scans of past.
         auto constantSpeed = [&](std::size_t count, auto judgeAt)
         {
             double step = 0.0;
@@ -669,11 +675,15 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
                            [&](const BeamOffset& o, std::size_t k)
                            {
                                const double scans_away = static_cast<double>(k + 1);
+                               const double off_step = std::abs(o.offset - step * scans_away);
                                if (returned == 0)
                                    step = o.offset / scans_away;
-                               else if (std::abs(o.offset - step * scans_away) > o.margin)
+                               else if (off_step > o.margin)
                                    return Walk::Lost;
-                               return ++returned >= kSteadyJudges && std::abs(o.offset) > o.margin
+                               ++returned;
+                               if (std::abs(o.offset) <= o.margin) return Walk::On;
+                               return returned >= kSteadyJudges ||
+                                              (returned == 2 && off_step <= 0.5 * margin.base)
                                           ? Walk::Found
                                           : Walk::On;
                            });
