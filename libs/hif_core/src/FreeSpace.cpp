@@ -580,9 +580,9 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             if (facing < 0) facing = facesBeams(ownJudge(), p_w, margin) ? 1 : 0;
             return facing == 1;
         };
-        // Whether judge j settles this side: gone, or occupied (`sized`: its beam returned a
-        // drift's size from the point).
-        bool sized = false;
+        // Whether judge j settles this side: gone, or occupied (`at`: where its beam returned,
+        // from the point, and the margin there).
+        BeamOffset at{0.0, 0.0};
         auto settles = [&](std::size_t j, bool& gone)
         {
             const ImageCell* c = cellIn(j);
@@ -590,19 +590,19 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             const Look v = look(judges[j], *c, margin);
             judged = judged || v.view != View::None;
             gone = v.view == View::Free;
-            sized = driftSize(static_cast<double>(v.range) - c->d, margin.at(c->d));
+            at = {static_cast<double>(v.range) - c->d, margin.at(c->d)};
             return gone || v.view == View::Occupied;
         };
         // Each side, walking in from the farthest judge: how far in time (in judges) the one
         // that settled it was (0: none did).
         bool gone = false;
         std::size_t settled_before = 0, settled_after = 0;
-        bool sized_before = false, sized_after = false;
+        BeamOffset at_before{0.0, 0.0}, at_after{0.0, 0.0};
         for (std::size_t j = 0; j < self_pos; ++j)  // the earlier judges, oldest first
             if (settles(j, gone))
             {
                 settled_before = self_pos - j;
-                sized_before = sized;
+                at_before = at;
                 break;
             }
         if (gone) return Verdict::Gone;
@@ -610,7 +610,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             if (settles(j, gone))
             {
                 settled_after = j - self_pos + 1;
-                sized_after = sized;
+                at_after = at;
                 break;
             }
         if (gone) return Verdict::Gone;
@@ -714,10 +714,10 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         // Only where it can be found: the judge that settled the side is the farthest out
         // that saw the point within the margin, so a steady drift reaches its size there
         // (what it saw, taken with the beam that look() took), kSteadyJudges or more out.
-        auto mayDrift = [](std::size_t settled, bool settled_sized)
-        { return settled >= kSteadyJudges && settled_sized; };
-        if ((mayDrift(settled_before, sized_before) && steady(self_pos, earlier)) ||
-            (mayDrift(settled_after, sized_after) && steady(judges.size() - self_pos, later)))
+        auto mayDrift = [&](std::size_t settled, const BeamOffset& o)
+        { return settled >= kSteadyJudges && driftSize(o.offset, o.margin); };
+        if ((mayDrift(settled_before, at_before) && steady(self_pos, earlier)) ||
+            (mayDrift(settled_after, at_after) && steady(judges.size() - self_pos, later)))
             return Verdict::Gone;
         // A surface that moved along the beams at a constant speed of more than the margin a
         // scan (a car driving ahead of the sensor, seen from behind): each scan before it saw
