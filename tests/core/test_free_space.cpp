@@ -608,9 +608,10 @@ TEST(FreeSpaceTest, APersonWalkingAlongTheLineOfSightIsShownByASteadyDrift)
     }
 }
 
-// The same at 0.05 m per scan (0.5 m/s): from the scans nearest in time the person drifts
-// 0.3-0.45 m, under a drift's size where a beam beside the point may land on a slanted surface
-// (0.45 m at 15 m), over it where the person's own scan shows a surface facing its beams.
+// The same at 0.05 m per scan (0.5 m/s): the person drifts the margin's base (0.3 m) from a scan
+// six scans away, but a drift's size where a beam beside the point may land on a slanted surface
+// (0.45 m at 15 m) only nine scans away, more than most scans of the clip have on either side.
+// The person's own scan shows a surface facing its beams, where the base is the size.
 TEST(FreeSpaceTest, ASlowWalkerIsShownWhereItsSurfaceFacesTheBeams)
 {
     for (const double ego : {0.0, 0.3})
