@@ -207,25 +207,27 @@ bool alongBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& m
 /** Whether world point `p` lies on a surface that faces the beams of scan `own` (the scan it
  *  was seen in): in `own`'s image, the nearest returns beside it in its row (within two
  *  columns) and above and below it in its column (within one and a half beam spacings) that
- *  lie on its surface (within the margin of it; at least one does) lie within the margin's
- *  share for range noise and pose error (half its base) of its range. A beam a fraction of a
- *  cell off the point's direction then returns where one toward the point would: a walker, a
- *  car's back. On a surface met at grazing incidence (a facade along the street, the ground,
- *  a windscreen) or in foliage, neighbouring beams return farther apart; returns beyond the
- *  margin are another surface (the point lies on an edge). */
+ *  lie on its surface (within the margin of it; in the row and in the column, at least one
+ *  does) lie within the margin's share for range noise and pose error (half its base) of its
+ *  range. A beam a fraction of a cell off the point's direction then returns where one toward
+ *  the point would: a walker, a car's back. On a surface met at grazing incidence (a facade
+ *  along the street, a windscreen) or in foliage, neighbouring beams return farther apart;
+ *  returns beyond the margin are another surface (the point lies on an edge). The ground seen
+ *  by one ring returns its row at one range, but the next ring lands beyond the margin: no
+ *  surface in the column. */
 bool facesBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& margin)
 {
     const auto cell = cellOf(own, p);
     if (!cell) return false;
     const int cols = own.layout->cols, rows = own.layout->rows;
     const double m = margin.at(cell->d);
-    bool any = false;
-    // Whether the return at `f` leaves the surface facing the beams.
-    auto check = [&](float f)
+    bool in_row = false, in_column = false;
+    // Whether the return at `f` leaves the surface facing the beams; `on` if it lies on it.
+    auto check = [&](float f, bool& on)
     {
         const double off = std::abs(static_cast<double>(f) - cell->d);
         if (!(off <= m)) return true;  // another surface, or none
-        any = true;
+        on = true;
         return off <= 0.5 * margin.base;
     };
     for (int dir = -1; dir <= 1; dir += 2)
@@ -233,7 +235,7 @@ bool facesBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& m
         float f = std::numeric_limits<float>::infinity();
         for (int k = 1; k <= 2 && !std::isfinite(f); ++k)
             f = own.at(cell->r, ((cell->c + dir * k) % cols + cols) % cols);
-        if (!check(f)) return false;
+        if (!check(f, in_row)) return false;
         f = std::numeric_limits<float>::infinity();
         for (int k = 1; k <= 3 && !std::isfinite(f); ++k)
         {
@@ -241,9 +243,9 @@ bool facesBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& m
             if (r < 0 || r >= rows) break;
             f = columnReturn(own, r, cell->c);
         }
-        if (!check(f)) return false;
+        if (!check(f, in_column)) return false;
     }
-    return any;
+    return in_row && in_column;
 }
 
 /** Whether scan `own` could not see below world point `p`, the lowest return of a pillar:
