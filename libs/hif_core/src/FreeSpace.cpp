@@ -176,6 +176,24 @@ float columnReturn(const Judge& j, int r, int c)
     return std::min(j.at(r, c + 1 < cols ? c + 1 : 0), j.at(r, c > 0 ? c - 1 : cols - 1));
 }
 
+/** The next beam's return in column `col` of judge `j`'s image from `row`, up (`dir` 1) or down
+ *  (-1): the first of the rows within one and a half beam spacings (three rows of half a
+ *  spacing) whose columnReturn() holds one. Its row (-1: none) and its range (`range`, +inf for
+ *  none). */
+int nextInColumn(const Judge& j, int row, int col, int dir, float& range)
+{
+    constexpr int kRows = 3;
+    for (int k = 1; k <= kRows; ++k)
+    {
+        const int r = row + dir * k;
+        if (r < 0 || r >= j.layout->rows) break;
+        range = columnReturn(j, r, col);
+        if (std::isfinite(range)) return r;
+    }
+    range = std::numeric_limits<float>::infinity();
+    return -1;
+}
+
 /** Whether world point `p` lies on a surface that runs along the beams of scan `own` (the
  *  scan it was seen in), met at grazing incidence: in its column of `own`'s image, the nearest
  *  beam on one side (up to one and a half beam spacings away: three rows of half a spacing)
@@ -187,20 +205,14 @@ bool alongBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& m
 {
     const auto cell = cellOf(own, p);
     if (!cell) return false;
-    constexpr int kRows = 3;
-    const RangeImageLayout& l = *own.layout;
     const double m = margin.at(cell->d);
     int sides[2] = {0, 0};  // below, above: +1 beyond, -1 in front, 0 near the point or none
     for (int dir = -1; dir <= 1; dir += 2)
-        for (int k = 1; k <= kRows; ++k)
-        {
-            const int r = cell->r + dir * k;
-            if (r < 0 || r >= l.rows) break;
-            const float f = columnReturn(own, r, cell->c);
-            if (!std::isfinite(f)) continue;
-            sides[dir > 0] = f > cell->d + m ? 1 : f < cell->d - m ? -1 : 0;
-            break;
-        }
+    {
+        float f = 0.0f;
+        if (nextInColumn(own, cell->r, cell->c, dir, f) < 0) continue;
+        sides[dir > 0] = f > cell->d + m ? 1 : f < cell->d - m ? -1 : 0;
+    }
     return sides[0] * sides[1] == -1;
 }
 
@@ -219,7 +231,7 @@ bool facesBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& m
 {
     const auto cell = cellOf(own, p);
     if (!cell) return false;
-    const int cols = own.layout->cols, rows = own.layout->rows;
+    const int cols = own.layout->cols;
     const double m = margin.at(cell->d);
     bool in_row = false, in_column = false;
     // Whether the return at `f` leaves the surface facing the beams; `on` if it lies on it.
@@ -236,13 +248,7 @@ bool facesBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& m
         for (int k = 1; k <= 2 && !std::isfinite(f); ++k)
             f = own.at(cell->r, ((cell->c + dir * k) % cols + cols) % cols);
         if (!check(f, in_row)) return false;
-        f = std::numeric_limits<float>::infinity();
-        for (int k = 1; k <= 3 && !std::isfinite(f); ++k)
-        {
-            const int r = cell->r + dir * k;
-            if (r < 0 || r >= rows) break;
-            f = columnReturn(own, r, cell->c);
-        }
+        nextInColumn(own, cell->r, cell->c, dir, f);
         if (!check(f, in_column)) return false;
     }
     return in_row && in_column;
@@ -260,22 +266,12 @@ bool groundHidden(const Judge& own, const Eigen::Vector3d& p, const RangeMargin&
 {
     const auto cell = cellOf(own, p);
     if (!cell) return false;
-    constexpr int kRows = 3;
     const RangeImageLayout& l = *own.layout;
     const Eigen::Vector3d q = own.Rt * (p - own.t);
     const double rxy = std::sqrt(q.x() * q.x() + q.y() * q.y());
     const double ux = q.x() / rxy, uy = q.y() / rxy;
-    // The nearest return below `row` in the point's column, else the nearer of the columns on
-    // each side; its row, or -1.
-    auto below = [&](int row, float& range)
-    {
-        for (int r = row - 1; r >= std::max(0, row - kRows); --r)
-        {
-            range = columnReturn(own, r, cell->c);
-            if (std::isfinite(range)) return r;
-        }
-        return -1;
-    };
+    // The nearest return below `row` in the point's column; its row, or -1.
+    auto below = [&](int row, float& range) { return nextInColumn(own, row, cell->c, -1, range); };
     // A return of `row` at `range` along the point's azimuth, world frame: horizontal distance
     // from the sensor and height.
     auto place = [&](int row, float range)
