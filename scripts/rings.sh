@@ -8,8 +8,12 @@
 #   bash scripts/rings.sh -c share/hif/config/kitti-paper.ini
 #
 # Environment: HIF_KITTI_DIR (default ../shared/data/kitti), HIF_RINGS_SEQS (default
-# "01 03 04 08"), HIF_RINGS_EVERY (default "1 2 4"). The copies go to
-# ${HIF_RINGS_DIR:-build/rings}/ (made once, by the test tool hif_decimate_rings).
+# "01 03 04 08"), HIF_RINGS_EVERY (default "1 2 4"), HIF_RINGS_PHASES ("all": every choice of
+# the rings kept, 0 to k-1, each on a line of its own ("16+1": every 4th ring from ring 1),
+# then their mean ("16 mean"); default 0 only, the rings 0, k, 2k, ...). Which rings a
+# decimated copy keeps moves its scores by several points (a car 30 m away seen by one ring or
+# by two): compare changes over all of them. The copies go to ${HIF_RINGS_DIR:-build/rings}/
+# (made once, by the test tool hif_decimate_rings).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${HIF_BUILD_DIR:-build}
@@ -28,15 +32,34 @@ for seq in $SEQS; do
   src=$KITTI/sequences/$seq
   [ -d "$src" ] || { echo "[rings] $src missing: left out" >&2; continue; }
   for k in $EVERY; do
-    if [ "$k" = 1 ]; then clip=$src; else
-      clip=$ROOT/${seq}_every$k
-      [ -f "$clip/times.txt" ] || "$TOOL" "$src" "$clip" "$k" > /dev/null
+    phases=0
+    [ "${HIF_RINGS_PHASES:-0}" = all ] && phases=$(seq 0 $((k - 1)))
+    lines=""
+    for phase in $phases; do
+      if [ "$k" = 1 ]; then clip=$src; name=${seq}_every$k; label=64; else
+        name=${seq}_every$k; label=$((64 / k))
+        [ "$phase" = 0 ] || { name=${name}_from$phase; label=$label+$phase; }
+        clip=$ROOT/$name
+        [ -f "$clip/times.txt" ] || "$TOOL" "$src" "$clip" "$k" "$phase" > /dev/null
+      fi
+      out=$ROOT/runs/$name
+      mkdir -p "$(dirname "$out")"
+      "$BIN/hif-clean" -i "$clip" -o "$out" -q --overwrite --no-png "$@" > "$out.log" 2>&1 \
+        || { cat "$out.log" >&2; exit 1; }
+      "$BIN/hif-eval" --labels "$clip/labels" --predictions "$out/predictions" -q > "$out.eval"
+      line=$(awk -v a="$seq" -v b="$label" -f scripts/score-line.awk "$out.eval")
+      echo "$line"
+      lines+="$line"$'\n'
+    done
+    # The mean of each column over the phases ("-" where a phase has no such points).
+    if [ "$k" != 1 ] && [ "$(echo "$phases" | wc -w)" -gt 1 ]; then
+      printf "%s" "$lines" | awk -v a="$seq" -v b="$((64 / k)) mean" '
+        { for (c = 3; c <= 8; ++c) if ($c != "-") { sum[c] += $c; n[c]++ } }
+        END {
+          printf "%-8s %-9s", a, b
+          for (c = 3; c <= 8; ++c) printf " %7s", n[c] ? sprintf("%.2f", sum[c] / n[c]) : "-"
+          printf "\n"
+        }'
     fi
-    out=$ROOT/runs/${seq}_every$k
-    mkdir -p "$(dirname "$out")"
-    "$BIN/hif-clean" -i "$clip" -o "$out" -q --overwrite --no-png "$@" > "$out.log" 2>&1 \
-      || { cat "$out.log" >&2; exit 1; }
-    "$BIN/hif-eval" --labels "$clip/labels" --predictions "$out/predictions" -q > "$out.eval"
-    awk -v a="$seq" -v b=$((64 / k)) -f scripts/score-line.awk "$out.eval"
   done
 done

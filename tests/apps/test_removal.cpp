@@ -14,6 +14,8 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <tuple>
 
 #include "app_checks.h"
 #include "app_runner.h"
@@ -319,6 +321,51 @@ TEST(RealKittiRings, SparserCopiesOf04KeepTheirRingsAndLabelsAndAreCleaned)
         EXPECT_GE(s["SA"].get<double>(), sa_floor) << s;
         EXPECT_GE(s["AA"].get<double>(), aa_floor) << s;
         EXPECT_GE(scores["per_moving_class"]["moving-person"]["DA"].get<double>(), person_floor);
+    }
+}
+
+// The tool's choice of rings (hif_decimate_rings ... k phase, scripts/rings.sh with
+// HIF_RINGS_PHASES=all): the k copies of every k-th ring, from ring 0 to ring k-1, split each
+// scan's points and labels between them, nothing left out and nothing twice.
+TEST(RealKittiRings, TheCopiesFromEachFirstRingSplitEveryScan)
+{
+    const std::string dir = hif::test::kittiRoot() + "/sequences/04";
+    HIF_REQUIRE_KITTI_SEQUENCE(dir);
+    const WorkDir work = workDir("kitti04_ring_phases");
+    constexpr int k = 4;
+    const hif::io::KittiSequence full(dir);
+    std::vector<hif::io::KittiSequence> copies;
+    for (int phase = 0; phase < k; ++phase)
+    {
+        const std::string seq = work.path() + "/from" + std::to_string(phase);
+        const std::string cmd = std::string(HIF_DECIMATE_RINGS) + " " + dir + " " + seq + " " +
+                                std::to_string(k) + " " + std::to_string(phase) + " > /dev/null";
+        ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+        copies.emplace_back(seq);
+        ASSERT_EQ(copies.back().size(), full.size());
+    }
+    const std::string bad = std::string(HIF_DECIMATE_RINGS) + " " + dir + " " + work.path() +
+                            "/bad 4 4 > /dev/null 2>&1";
+    EXPECT_NE(std::system(bad.c_str()), 0) << "a phase of k or more is refused";
+    for (std::size_t i = 0; i < full.size(); i += 3)
+    {
+        SCOPED_TRACE(i);
+        // Each of the full scan's points, with its label, in exactly one copy.
+        const hif::io::Cloud scan = full.readScan(i);
+        const std::vector<uint32_t> labels = hif::io::readLabels(full.labelFile(i));
+        std::multiset<std::tuple<float, float, float, uint32_t>> all, parts;
+        for (std::size_t p = 0; p < scan.size(); ++p)
+            all.emplace(scan.x[p], scan.y[p], scan.z[p], labels[p]);
+        for (const auto& copy : copies)
+        {
+            const hif::io::Cloud part = copy.readScan(i);
+            const std::vector<uint32_t> part_labels = hif::io::readLabels(copy.labelFile(i));
+            ASSERT_EQ(part_labels.size(), part.size());
+            EXPECT_NEAR(double(part.size()) / double(scan.size()), 1.0 / k, 0.05);
+            for (std::size_t p = 0; p < part.size(); ++p)
+                parts.emplace(part.x[p], part.y[p], part.z[p], part_labels[p]);
+        }
+        EXPECT_TRUE(parts == all);
     }
 }
 

@@ -3,9 +3,10 @@
  * @file   decimate_rings.cpp
  * @brief  Test tool: a copy of a KITTI sequence with every k-th ring of each scan only (and the
  *         labels of those points), to stand for a sparser LiDAR: every 2nd of the HDL-64E's
- *         rings is about an HDL-32E's spacing, every 4th a VLP-16's.
+ *         rings is about an HDL-32E's spacing, every 4th a VLP-16's. The rings kept are those
+ *         whose number (0 the first of a scan) is `phase` modulo k (default 0).
  *
- *   hif_decimate_rings <sequence folder> <output folder> <k>
+ *   hif_decimate_rings <sequence folder> <output folder> <k> [phase]
  */
 #include <cstdlib>
 #include <filesystem>
@@ -24,12 +25,14 @@ int main(int argc, char** argv)
 {
     try
     {
-        if (argc != 4)
-            throw std::runtime_error("usage: hif_decimate_rings <sequence> <output> <k>");
+        if (argc != 4 && argc != 5)
+            throw std::runtime_error("usage: hif_decimate_rings <sequence> <output> <k> [phase]");
         const hif::io::KittiSequence seq(argv[1]);
         const fs::path out(argv[2]);
         const int k = std::atoi(argv[3]);
         if (k < 1 || k > 64) throw std::runtime_error("k must be in [1, 64]");
+        const int phase = argc == 5 ? std::atoi(argv[4]) : 0;
+        if (phase < 0 || phase >= k) throw std::runtime_error("phase must be in [0, k)");
         if (fs::exists(out)) throw std::runtime_error("'" + out.string() + "' exists");
         fs::create_directories(out / "velodyne");
         if (seq.hasLabels()) fs::create_directories(out / "labels");
@@ -49,7 +52,7 @@ int main(int argc, char** argv)
             std::vector<uint32_t> lab;
             for (std::size_t p = 0; p < scan.size(); ++p)
             {
-                if (ring[p] % static_cast<uint32_t>(k) != 0) continue;
+                if (ring[p] % static_cast<uint32_t>(k) != static_cast<uint32_t>(phase)) continue;
                 pts.insert(pts.end(), {scan.x[p], scan.y[p], scan.z[p], scan.intensity[p]});
                 if (labelled) lab.push_back(labels[p]);
             }
@@ -64,8 +67,8 @@ int main(int argc, char** argv)
                 throw std::runtime_error("cannot write '" + (out / "velodyne").string() + "'");
             if (labelled) hif::io::writeLabels((out / "labels" / (name + ".label")).string(), lab);
         }
-        std::cout << "[hif_decimate_rings] every " << k << " ring(s) of " << seq.size()
-                  << " scans: " << kept << " of " << total << " points\n";
+        std::cout << "[hif_decimate_rings] every " << k << " ring(s) from ring " << phase << " of "
+                  << seq.size() << " scans: " << kept << " of " << total << " points\n";
         return 0;
     }
     catch (const std::exception& e)
