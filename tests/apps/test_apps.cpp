@@ -130,6 +130,19 @@ TEST(HifEval, AgreesWithAHandCountedExample)
     }
     EXPECT_EQ(bands[0]["band"], "0-10");
     EXPECT_EQ(bands[4]["band"], "50+");
+    // Per moving class in each band: the bicyclist 0-10 m (removed), the car 10-20 m (removed),
+    // the person 35-50 m (kept); no class where a band has none of it.
+    EXPECT_EQ(bands[0]["per_moving_class"].size(), 1u);
+    EXPECT_EQ(bands[0]["per_moving_class"]["moving-bicyclist"]["dynamic_removed"], 1);
+    EXPECT_EQ(bands[1]["per_moving_class"].size(), 1u);
+    EXPECT_DOUBLE_EQ(bands[1]["per_moving_class"]["moving-car"]["DA"].get<double>(), 100.0);
+    EXPECT_TRUE(bands[2]["per_moving_class"].empty());
+    EXPECT_EQ(bands[3]["per_moving_class"]["moving-person"]["dynamic_total"], 1);
+    EXPECT_DOUBLE_EQ(bands[3]["per_moving_class"]["moving-person"]["DA"].get<double>(), 0.0);
+    // Printed as a column per moving class present (252, 253, 254 in that order), "-" where a
+    // band has none of it.
+    EXPECT_NE(rb.output.find("DA       car bicyclist    person"), std::string::npos) << rb.output;
+    EXPECT_NE(rb.output.find("0.00         -         -      0.00"), std::string::npos) << rb.output;
     // Printed, a band without dynamic points has no DA ("-"), one without static points no SA.
     EXPECT_NE(rb.output.find("20-35                  1         0  100.00       -"),
               std::string::npos)

@@ -75,6 +75,8 @@ void Breakdown::add(uint32_t truth, bool removed, double range)
     if (band < by_range.size())
     {
         by_range[band].add(truth, removed);
+        if (isScored(truth) && isMovingClass(truth))
+            by_moving_class_range[truth & 0xffffu][band].add(truth, removed);
         has_ranges = true;
     }
 }
@@ -85,6 +87,11 @@ Breakdown& Breakdown::operator+=(const Breakdown& o)
     for (const auto& [cls, s] : o.by_moving_class) by_moving_class[cls] += s;
     for (const auto& [cls, s] : o.by_static_class) by_static_class[cls] += s;
     for (std::size_t b = 0; b < by_range.size(); ++b) by_range[b] += o.by_range[b];
+    for (const auto& [cls, bands] : o.by_moving_class_range)
+    {
+        Bands& mine = by_moving_class_range[cls];
+        for (std::size_t b = 0; b < bands.size(); ++b) mine[b] += bands[b];
+    }
     has_ranges = has_ranges || o.has_ranges;
     return *this;
 }

@@ -26,13 +26,17 @@ constexpr std::array<double, 5> kRangeBandStarts = {0.0, 10.0, 20.0, 35.0, 50.0}
 /** Band of a range (negative or NaN ranges: none, returns kRangeBandStarts.size()). */
 [[nodiscard]] std::size_t rangeBand(double range);
 
-/** Scores in total, per moving class present, per static class present and per range band. */
+/** Scores in total, per moving class present, per static class present, per range band, and
+ *  per moving class present in each range band. */
 struct Breakdown
 {
+    using Bands = std::array<Scores, kRangeBandStarts.size()>;
     Scores total;
     std::map<uint32_t, Scores> by_moving_class;  ///< key: class 252-259
     std::map<uint32_t, Scores> by_static_class;  ///< key: a scored class below 252 (or above 259)
-    std::array<Scores, kRangeBandStarts.size()> by_range{};
+    Bands by_range{};
+    /** Per moving class (key: class 252-259) with a range, its points in each band. */
+    std::map<uint32_t, Bands> by_moving_class_range;
     bool has_ranges = false;  ///< some point was added with a range
 
     /** One point: its ground-truth label, whether it was removed, and its range from the
