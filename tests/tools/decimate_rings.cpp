@@ -29,10 +29,18 @@ int main(int argc, char** argv)
             throw std::runtime_error("usage: hif_decimate_rings <sequence> <output> <k> [phase]");
         const hif::io::KittiSequence seq(argv[1]);
         const fs::path out(argv[2]);
-        const int k = std::atoi(argv[3]);
-        if (k < 1 || k > 64) throw std::runtime_error("k must be in [1, 64]");
-        const int phase = argc == 5 ? std::atoi(argv[4]) : 0;
-        if (phase < 0 || phase >= k) throw std::runtime_error("phase must be in [0, k)");
+        // A whole number, or -1 (refused below).
+        const auto number = [](const char* text)
+        {
+            char* end = nullptr;
+            const long v = std::strtol(text, &end, 10);
+            return end != text && *end == '\0' && v >= 0 && v <= 64 ? static_cast<int>(v) : -1;
+        };
+        const int k = number(argv[3]);
+        if (k < 1) throw std::runtime_error("k must be a whole number in [1, 64]");
+        const int phase = argc == 5 ? number(argv[4]) : 0;
+        if (phase < 0 || phase >= k)
+            throw std::runtime_error("phase must be a whole number in [0, k)");
         if (fs::exists(out)) throw std::runtime_error("'" + out.string() + "' exists");
         fs::create_directories(out / "velodyne");
         if (seq.hasLabels()) fs::create_directories(out / "labels");
