@@ -82,6 +82,12 @@ struct Cli
                                "Replace the files of --json, --png and --classes-ply if they exist "
                                "(never an input of the run)",
                                cmd};
+    TCLAP::SwitchArg objects{
+        "", "objects",
+        "Also score each moving object apart (a SemanticKITTI instance: its moving class and "
+        "instance id): the scans it is in, its points, how many were removed and, with --scans, "
+        "its mean range",
+        cmd};
     TCLAP::SwitchArg quiet{"q", "quiet", "Print the totals only, not every scan", cmd};
 };
 
@@ -97,6 +103,7 @@ int run(Cli& cli)
     if (cli.json.isSet()) o.json = cli.json.getValue();
     o.overwrite = cli.overwrite.getValue();
     o.per_scan = !cli.quiet.getValue();
+    o.objects = cli.objects.getValue();
     hif::jobs::Evaluate(o).run(std::cout);
     return 0;
 }

@@ -42,6 +42,65 @@ TEST(Apps, HelpExitsZeroAndABadFlagStopsTheApp)
     }
 }
 
+// --objects: each moving object (class and SemanticKITTI instance id) scored apart, with the
+// scans it is in and, with --scans, its mean range.
+TEST(HifEval, ScoresEachMovingObjectApart)
+{
+    const WorkDir work = workDir("eval_objects");
+    const std::string& d = work.path();
+    for (const char* sub : {"/labels", "/pred", "/velodyne"}) fs::create_directories(d + sub);
+    auto label = [](uint32_t cls, uint32_t id) { return cls | (id << 16); };
+    // Scan 0: car 1 (2 points, 1 removed), person 1 (1 point, removed), road.
+    // Scan 1: car 1 (1 point, removed), car 2 (2 points, none removed).
+    hif::io::writeLabels(d + "/labels/000000.label",
+                         {label(252, 1), label(252, 1), label(254, 1), 40});
+    hif::io::writeLabels(d + "/pred/000000.label", {251, 9, 251, 9});
+    hif::io::writeLabels(d + "/labels/000001.label", {label(252, 1), label(252, 2), label(252, 2)});
+    hif::io::writeLabels(d + "/pred/000001.label", {251, 9, 9});
+    auto writeBin = [&](const std::string& name, const std::vector<float>& ranges)
+    {
+        std::vector<float> p;
+        for (float range : ranges) p.insert(p.end(), {range, 0.0f, 0.0f, 0.0f});
+        std::ofstream(d + "/velodyne/" + name, std::ios::binary)
+            .write(reinterpret_cast<const char*>(p.data()), std::streamsize(p.size() * 4));
+    };
+    writeBin("000000.bin", {10, 20, 30, 5});
+    writeBin("000001.bin", {30, 40, 44});
+    const std::string args =
+        "--labels " + d + "/labels --predictions " + d + "/pred --objects --json " + d;
+    const auto r = runApp("hif-eval", args + "/objects.json --scans " + d + "/velodyne");
+    ASSERT_EQ(r.code, 0) << r.output;
+    const json rows = readJson(d + "/objects.json")["per_object"];
+    ASSERT_EQ(rows.size(), 3u) << rows;
+    // By class, then instance: car 1, car 2, person 1.
+    EXPECT_EQ(rows[0]["class"], "moving-car");
+    EXPECT_EQ(rows[0]["instance"], 1);
+    EXPECT_EQ(rows[0]["scans"], 2);
+    EXPECT_EQ(rows[0]["dynamic_total"], 3);
+    EXPECT_EQ(rows[0]["dynamic_removed"], 2);
+    EXPECT_NEAR(rows[0]["DA"].get<double>(), 200.0 / 3.0, 1e-9);
+    EXPECT_DOUBLE_EQ(rows[0]["mean_range"].get<double>(), 20.0);
+    EXPECT_EQ(rows[1]["instance"], 2);
+    EXPECT_EQ(rows[1]["scans"], 1);
+    EXPECT_DOUBLE_EQ(rows[1]["DA"].get<double>(), 0.0);
+    EXPECT_DOUBLE_EQ(rows[1]["mean_range"].get<double>(), 42.0);
+    EXPECT_EQ(rows[2]["class"], "moving-person");
+    EXPECT_DOUBLE_EQ(rows[2]["DA"].get<double>(), 100.0);
+    EXPECT_NE(
+        r.output.find("moving-car 1                   2         3         2   66.67      20.0"),
+        std::string::npos)
+        << r.output;
+    // Without --scans the range is unknown: "-", null in the JSON.
+    const auto n = runApp("hif-eval", args + "/no_scans.json");
+    ASSERT_EQ(n.code, 0) << n.output;
+    EXPECT_TRUE(readJson(d + "/no_scans.json")["per_object"][0]["mean_range"].is_null());
+    EXPECT_NE(n.output.find("66.67         -"), std::string::npos) << n.output;
+    // Without --objects, no such table.
+    const auto plain = runApp("hif-eval", "--labels " + d + "/labels --predictions " + d + "/pred");
+    ASSERT_EQ(plain.code, 0) << plain.output;
+    EXPECT_EQ(plain.output.find("moving object"), std::string::npos) << plain.output;
+}
+
 TEST(HifEval, AgreesWithAHandCountedExample)
 {
     const WorkDir work = workDir("eval_hand");

@@ -13,9 +13,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <tuple>
+#include <utility>
+#include <vector>
 
 #include "hif/apps/Cli.h"
 #include "hif/apps/RunFiles.h"
@@ -213,6 +217,14 @@ EvaluateResult Evaluate::run(std::ostream& log) const
                               hif::io::PointFields::colourOnly());
     hif::io::Breakdown total;
     hif::io::Scores with_ego;  ///< the DynamicMap benchmark's way (needs ranges)
+    // --objects: each moving object (its full label: class and instance id).
+    struct Object
+    {
+        std::size_t scans = 0, points = 0, removed = 0, ranged = 0;
+        double range_sum = 0.0;
+        std::size_t last_scan = std::numeric_limits<std::size_t>::max();
+    };
+    std::map<uint32_t, Object> objects;
     std::size_t without_truth = 0, scored = 0;
     OtherValues other;
     nlohmann::ordered_json scans = nlohmann::ordered_json::array();
@@ -253,6 +265,19 @@ EvaluateResult Evaluate::run(std::ostream& log) const
         {
             const bool removed = hif::io::isPredictedMoving(pred[i]);
             s.add(truth[i], removed, range[i]);
+            if (o.objects && hif::io::isMovingClass(truth[i] & 0xffffu))
+            {
+                Object& ob = objects[truth[i]];
+                if (ob.last_scan != scored) ++ob.scans;
+                ob.last_scan = scored;
+                ++ob.points;
+                ob.removed += removed;
+                if (std::isfinite(range[i]))
+                {
+                    ++ob.ranged;
+                    ob.range_sum += range[i];
+                }
+            }
             const bool ego = range[i] < ego_radius;
             with_ego.add(ego ? 252u : truth[i], removed);
         }
@@ -324,6 +349,45 @@ EvaluateResult Evaluate::run(std::ostream& log) const
         classes[n] = {{"DA", s.da()},
                       {"dynamic_total", s.dynamic_total},
                       {"dynamic_removed", s.dynamic_removed}};
+    }
+    // Each moving object (--objects), by class, then instance id.
+    nlohmann::ordered_json object_rows = nlohmann::ordered_json::array();
+    if (o.objects)
+    {
+        say(log, "%-22s %9s %9s %9s %7s %9s\n", "moving object", "scans", "dynamic", "removed",
+            "DA", "range (m)");
+        std::vector<std::pair<uint32_t, const Object*>> sorted;
+        for (const auto& [label, ob] : objects) sorted.emplace_back(label, &ob);
+        std::sort(sorted.begin(), sorted.end(),
+                  [](const auto& a, const auto& b)
+                  {
+                      return std::pair(a.first & 0xffffu, a.first >> 16) <
+                             std::pair(b.first & 0xffffu, b.first >> 16);
+                  });
+        for (const auto& [label, ob] : sorted)
+        {
+            const std::string cls = hif::io::className(label & 0xffffu);
+            const std::string name = cls + " " + std::to_string(label >> 16);
+            const double da =
+                100.0 * static_cast<double>(ob->removed) / static_cast<double>(ob->points);
+            char range_text[16] = "        -";
+            if (ob->ranged > 0)
+                std::snprintf(range_text, sizeof range_text, "%9.1f",
+                              ob->range_sum / static_cast<double>(ob->ranged));
+            say(log, "%-22s %9zu %9zu %9zu %7.2f %s\n", name.c_str(), ob->scans, ob->points,
+                ob->removed, da, range_text);
+            nlohmann::ordered_json row = {{"class", cls},
+                                          {"instance", label >> 16},
+                                          {"scans", ob->scans},
+                                          {"dynamic_total", ob->points},
+                                          {"dynamic_removed", ob->removed},
+                                          {"DA", da}};
+            row["mean_range"] =
+                ob->ranged > 0
+                    ? nlohmann::ordered_json(ob->range_sum / static_cast<double>(ob->ranged))
+                    : nlohmann::ordered_json();
+            object_rows.push_back(row);
+        }
     }
     // What of each static class was kept (the static map's roads, walls, vegetation, poles).
     nlohmann::ordered_json static_classes = nlohmann::ordered_json::object();
@@ -426,6 +490,7 @@ EvaluateResult Evaluate::run(std::ostream& log) const
         j["total"] = toJson(total.total);
         j["per_moving_class"] = classes.is_null() ? nlohmann::ordered_json::object() : classes;
         j["per_static_class"] = static_classes;
+        if (o.objects) j["per_object"] = object_rows;
         if (total.has_ranges)
         {
             j["per_range"] = bands;

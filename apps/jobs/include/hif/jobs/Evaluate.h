@@ -31,6 +31,7 @@ struct EvaluateOptions
     std::optional<std::string> json;         ///< --json
     bool overwrite = false;                  ///< --overwrite
     bool per_scan = true;                    ///< a line per scan (--quiet: false)
+    bool objects = false;                    ///< --objects: a line per moving object
 };
 
 /** What was scored. */
