@@ -25,6 +25,18 @@ using hif::test::runApp;
 using hif::test::WorkDir;
 using hif::test::workDir;
 
+namespace
+{
+/** A KITTI .bin scan of points on the x axis at `ranges` (intensity 0). */
+void writeRangesOnTheXAxis(const std::string& file, const std::vector<float>& ranges)
+{
+    std::vector<float> p;
+    for (float range : ranges) p.insert(p.end(), {range, 0.0f, 0.0f, 0.0f});
+    std::ofstream(file, std::ios::binary)
+        .write(reinterpret_cast<const char*>(p.data()), std::streamsize(p.size() * 4));
+}
+}  // namespace
+
 TEST(Apps, HelpExitsZeroAndABadFlagStopsTheApp)
 {
     for (const std::string app :
@@ -58,12 +70,7 @@ TEST(HifEval, ScoresEachMovingObjectApart)
     hif::io::writeLabels(d + "/labels/000001.label", {label(252, 1), label(252, 2), label(252, 2)});
     hif::io::writeLabels(d + "/pred/000001.label", {251, 9, 9});
     auto writeBin = [&](const std::string& name, const std::vector<float>& ranges)
-    {
-        std::vector<float> p;
-        for (float range : ranges) p.insert(p.end(), {range, 0.0f, 0.0f, 0.0f});
-        std::ofstream(d + "/velodyne/" + name, std::ios::binary)
-            .write(reinterpret_cast<const char*>(p.data()), std::streamsize(p.size() * 4));
-    };
+    { writeRangesOnTheXAxis(d + "/velodyne/" + name, ranges); };
     writeBin("000000.bin", {10, 20, 30, 5});
     writeBin("000001.bin", {30, 40, 44});
     const std::string args =
@@ -155,12 +162,7 @@ TEST(HifEval, AgreesWithAHandCountedExample)
     // does.
     fs::create_directories(d + "/velodyne");
     auto writeBin = [&](const std::string& name, const std::vector<float>& ranges)
-    {
-        std::vector<float> p;
-        for (float range : ranges) p.insert(p.end(), {range, 0.0f, 0.0f, 0.0f});
-        std::ofstream(d + "/velodyne/" + name, std::ios::binary)
-            .write(reinterpret_cast<const char*>(p.data()), std::streamsize(p.size() * 4));
-    };
+    { writeRangesOnTheXAxis(d + "/velodyne/" + name, ranges); };
     writeBin("000000.bin", {5, 15, 25, 12, 2, 40});
     writeBin("000001.bin", {1, 60, 8});
     const auto rb =

@@ -150,6 +150,18 @@ void printRow(std::ostream& log, const char* name, const hif::io::Scores& s)
         s.sa(), s.da(), s.aa(), s.ha());
 }
 
+/** `v` in `width` characters with `decimals` decimals, or "-" there when there is none to
+ *  give (a band without static or dynamic points has no score for them, as in the README's
+ *  tables; an object without ranges no mean range). */
+std::string orDash(bool have, double v, int width, int decimals)
+{
+    char text[48];
+    if (have)
+        std::snprintf(text, sizeof text, "%*.*f", width, decimals, v);
+    else
+        std::snprintf(text, sizeof text, "%*s", width, "-");
+    return text;
+}
 }  // namespace
 
 EvaluateResult Evaluate::run(std::ostream& log) const
@@ -370,12 +382,9 @@ EvaluateResult Evaluate::run(std::ostream& log) const
             const std::string name = cls + " " + std::to_string(label >> 16);
             const double da =
                 100.0 * static_cast<double>(ob->removed) / static_cast<double>(ob->points);
-            char range_text[16] = "        -";
-            if (ob->ranged > 0)
-                std::snprintf(range_text, sizeof range_text, "%9.1f",
-                              ob->range_sum / static_cast<double>(ob->ranged));
+            const double mean_range = ob->range_sum / static_cast<double>(ob->ranged);
             say(log, "%-22s %9zu %9zu %9zu %7.2f %s\n", name.c_str(), ob->scans, ob->points,
-                ob->removed, da, range_text);
+                ob->removed, da, orDash(ob->ranged > 0, mean_range, 9, 1).c_str());
             nlohmann::ordered_json row = {{"class", cls},
                                           {"instance", label >> 16},
                                           {"scans", ob->scans},
@@ -383,9 +392,7 @@ EvaluateResult Evaluate::run(std::ostream& log) const
                                           {"dynamic_removed", ob->removed},
                                           {"DA", da}};
             row["mean_range"] =
-                ob->ranged > 0
-                    ? nlohmann::ordered_json(ob->range_sum / static_cast<double>(ob->ranged))
-                    : nlohmann::ordered_json();
+                ob->ranged > 0 ? nlohmann::ordered_json(mean_range) : nlohmann::ordered_json();
             object_rows.push_back(row);
         }
     }
@@ -411,17 +418,10 @@ EvaluateResult Evaluate::run(std::ostream& log) const
             say(log, " %9s", n.substr(0, 9).c_str());
         }
         say(log, "\n");
-        // A band without static or dynamic points has no score for them: "-", as in the
-        // README's tables (the JSON keeps the convention of Scores: 100).
+        // A score where the band has points to score (the JSON keeps the convention of
+        // Scores: 100).
         const auto pct = [](std::size_t count, double v, int width)
-        {
-            char text[32];
-            if (count == 0)
-                std::snprintf(text, sizeof text, "%*s", width, "-");
-            else
-                std::snprintf(text, sizeof text, "%*.2f", width, v);
-            return std::string(text);
-        };
+        { return orDash(count > 0, v, width, 2); };
         for (std::size_t b = 0; b < total.by_range.size(); ++b)
         {
             const hif::io::Scores& s = total.by_range[b];
