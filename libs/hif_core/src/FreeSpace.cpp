@@ -93,8 +93,10 @@ struct Look
     View view;
     float range;  ///< of the beam through the point (that of its cell, else the nearest one)
 };
-/** What scan `j` saw at a world point in its `cell`. */
-Look look(const Judge& j, const ImageCell& cell, const RangeMargin& margin)
+/** What scan `j` saw at a world point in its `cell`: from the beam of that cell, else (none
+ *  there, unless `own_beam_only`) from the nearest one around it. */
+Look look(const Judge& j, const ImageCell& cell, const RangeMargin& margin,
+          bool own_beam_only = false)
 {
     const int r = cell.r, c = cell.c;
     const double d = cell.d;
@@ -103,6 +105,7 @@ Look look(const Judge& j, const ImageCell& cell, const RangeMargin& margin)
     // The beam through the point: that of its own cell, else the nearest one around it.
     const float own = j.at(r, c);
     if (own <= d + m) return {own > d - m ? View::Occupied : View::None, own};  // or occluded
+    if (own_beam_only && !std::isfinite(own)) return {View::None, own};
     float e = own;
     bool near = false;
     int best = std::numeric_limits<int>::max();
@@ -489,7 +492,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     const ObjectTest object{static_cast<int32_t>(std::ceil(prm.free_space_clearance / res - 1e-9)),
                             prm.free_space_range * prm.free_space_range, prm.free_space_min_extent,
                             res};
-    const int32_t below = object.clearance / 2;  // marked from half the clearance up
+    const int32_t below = object.clearance / 2;  // marked from half the clearance up (mark())
     const RangeMargin margin{prm.free_space_margin, prm.free_space_margin_per_m};
     const Parallax parallax{prm.free_space_max_parallax_deg >= 90.0
                                 ? 1.0
@@ -779,16 +782,63 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         return a;
     };
 
+    // Whether the judges show input point i gone by the beams through its own cell alone (the
+    // stretch rule of pointVerdict(), walking in from the farthest judge on each side): where a
+    // judge's cell holds no return, a neighbouring cell's beam is no evidence about a point on
+    // the ground, which it meets at grazing incidence a beam spacing higher or lower, metres
+    // beyond or in front.
+    auto goneByOwnBeams = [&](uint32_t i)
+    {
+        const Eigen::Vector3d p_w = R * Eigen::Vector3d(pts.x[i], pts.y[i], pts.z[i]) + t;
+        const Eigen::Vector3d from_self = p_w - t;
+        const double self_dist = from_self.norm();
+        auto side = [&](std::size_t count, auto judgeAt)
+        {
+            for (std::size_t k = count; k-- > 0;)
+            {
+                const Judge& j = judges[judgeAt(k)];
+                if (!parallax.inView(j, p_w, from_self, self_dist)) continue;
+                const auto c = cellOf(j, p_w);
+                if (!c) continue;
+                const View v = look(j, *c, margin, true).view;
+                if (v == View::Free) return true;
+                if (v == View::Occupied) return false;
+            }
+            return false;
+        };
+        return side(self_pos, [&](std::size_t k) { return self_pos - 1 - k; }) ||
+               side(judges.size() - self_pos, [&](std::size_t k) { return self_pos + k; });
+    };
+    // Below half the clearance, a mover's pillar holds the ground under it, or the mover's own
+    // lowest part at the ground's height: a car's wheels and sill, a walker's feet, where a
+    // ring meets them at road level (with sparse rings, which ring does depends on the LiDAR:
+    // 01's car 28 m away at 16 rings, its lowest ring 0.05 m above the road around it). Each
+    // such entry goes with the mover on its own evidence: not on a surface along the beams
+    // (alongBeams(): ground met at grazing incidence) and seen through outside the time it was
+    // seen occupied, by the beams through its own cell (goneByOwnBeams(); either end of its
+    // run, as verdict()). The ground under a mover is seen occupied by the scans before and
+    // after the mover stood on it.
+    auto ownEvidence = [&](uint32_t k)
+    {
+        const uint32_t first = scan.index[k];
+        const Eigen::Vector3d p_w =
+            R * Eigen::Vector3d(pts.x[first], pts.y[first], pts.z[first]) + t;
+        if (alongBeams(ownJudge(), p_w, margin)) return false;
+        uint32_t last = first;
+        while (last + 1 < pts.size && scan.repeats[last + 1]) ++last;
+        return goneByOwnBeams(first) || (last != first && goneByOwnBeams(last));
+    };
     std::size_t marked = 0;
+    // Marks pillar p's points from half the clearance above its ground `low` up, and those
+    // below with their own evidence.
     auto mark = [&](std::size_t p, int32_t low)
     {
         for (uint32_t k = scan.offsets[p]; k < scan.offsets[p + 1]; ++k)
         {
             const uint32_t i = scan.index[k];
             const double x = pts.x[i], y = pts.y[i], z = pts.z[i];
-            if (is_dynamic[i] || scan.cells[k] < low + below ||
-                x * x + y * y + z * z > object.range2)
-                continue;
+            if (is_dynamic[i] || x * x + y * y + z * z > object.range2) continue;
+            if (scan.cells[k] < low + below && !ownEvidence(k)) continue;
             is_dynamic[i] = kSeenThrough;
             ++marked;
         }

@@ -141,7 +141,9 @@ struct Params
     double free_space_margin = 0.3;
     double free_space_margin_per_m = 0.02;
     /** Points of a scan less than this above their pillar's ground are ground (not tested;
-     *  removed with the rest of the pillar only from half of it up), metres. The ground is
+     *  in a pillar shown gone, removed with the rest from half of it up, and below that each
+     *  one only where other scans saw through it: a mover's lowest ring at the road's
+     *  height), metres. The ground is
      *  the pillar's lowest return in the scan, or the top of the map's floor there (its
      *  lowest static interval) where that lies free_space_min_extent or more below it: with
      *  sparse rings the lowest return is often a mover's own lowest ring. */
