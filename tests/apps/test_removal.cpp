@@ -235,11 +235,12 @@ TEST_P(RealKitti, OfflineCleaningMeetsTheFloors)
     const json& s = scores["total"];
     EXPECT_GE(s["SA"].get<double>(), sa_floor) << s;
     EXPECT_GE(s["AA"].get<double>(), aa_floor) << s;
-    // 04's walking person, 35-43 m away: mostly removed (measured 92 %; 69 % testing points
-    // within 40 m only, 5 % without the free-space test).
+    // 04's walking person, 35-43 m away: mostly removed (measured 96 %, 92.9 % before a mover's
+    // lowest ring at the road's height went with it; 69 % testing points within 40 m only, 5 %
+    // without the free-space test).
     if (seq == "04")
     {
-        EXPECT_GE(scores["per_moving_class"]["moving-person"]["DA"].get<double>(), 85.0);
+        EXPECT_GE(scores["per_moving_class"]["moving-person"]["DA"].get<double>(), 94.0);
     }
 }
 
@@ -253,10 +254,10 @@ INSTANTIATE_TEST_SUITE_P(Sequences, RealKitti,
                                            std::make_tuple("04", 98.9, 95.0)));
 
 // Online (each scan judged with the past only, kitti-online.ini), floors a little under what the
-// shipped config measures: 01 SA 99.21, car DA 69.35 (66.18 before a pillar's lowest return
-// out of sight of the ground went with the mover); 03 SA 98.76 (97.83 before p_empty held only
-// where beams had passed); 04 SA 98.98, AA 92.65, person DA 59.74. Deterministic: a
-// failure is a regression.
+// shipped config measures: 01 SA 99.19, car DA 70.46 (69.35 before a mover's lowest ring at the
+// road's height went with it, 66.18 before a pillar's lowest return out of sight of the ground
+// went with the mover); 03 SA 98.74 (97.83 before p_empty held only where beams had passed); 04
+// SA 98.97, AA 92.95, person DA 61.69 (59.74). Deterministic: a failure is a regression.
 TEST(RealKittiOnline, OnlineCleaningMeetsTheFloors)
 {
     struct Floors
@@ -265,7 +266,7 @@ TEST(RealKittiOnline, OnlineCleaningMeetsTheFloors)
         double sa, da;
     };
     for (const Floors& f :
-         std::vector<Floors>{{"01", 99.0, 68.0}, {"03", 98.5, 0.0}, {"04", 98.8, 85.0}})
+         std::vector<Floors>{{"01", 99.0, 69.5}, {"03", 98.5, 0.0}, {"04", 98.8, 85.0}})
     {
         SCOPED_TRACE(f.seq);
         const std::string dir = hif::test::kittiRoot() + "/sequences/" + f.seq;
@@ -281,7 +282,7 @@ TEST(RealKittiOnline, OnlineCleaningMeetsTheFloors)
         }
         if (f.seq == "04")
         {
-            EXPECT_GE(scores["per_moving_class"]["moving-person"]["DA"].get<double>(), 55.0);
+            EXPECT_GE(scores["per_moving_class"]["moving-person"]["DA"].get<double>(), 60.0);
         }
     }
 }
@@ -327,9 +328,10 @@ TEST(RealKittiRings, SparserCopiesOf04KeepTheirRingsAndLabelsAndAreCleaned)
 // The tool's choice of rings (hif_decimate_rings ... k phase, scripts/rings.sh with
 // HIF_RINGS_PHASES=all): the k copies of every k-th ring, from ring 0 to ring k-1, split each
 // scan's points and labels between them, nothing left out and nothing twice; and each is
-// cleaned. The floors are a little under today's figures from each first ring (SA 97.67,
-// 97.67, 97.79, 97.95; AA 94.20, 93.20, 92.55, 93.25): every choice is as much a 16-beam LiDAR,
-// and which rings a held-out copy keeps is not known.
+// cleaned. The floors are a little under today's figures from each first ring (SA 97.63,
+// 97.64, 97.73, 97.89; AA 94.83, 93.90, 93.41, 93.76; AA 94.20, 93.20, 92.55, 93.25 before a
+// mover's lowest ring at the road's height went with it): every choice is as much a 16-beam
+// LiDAR, and which rings a held-out copy keeps is not known.
 TEST(RealKittiRings, TheCopiesFromEachFirstRingSplitEveryScan)
 {
     const std::string dir = hif::test::kittiRoot() + "/sequences/04";
@@ -370,7 +372,7 @@ TEST(RealKittiRings, TheCopiesFromEachFirstRingSplitEveryScan)
         }
         EXPECT_TRUE(parts == all);
     }
-    const double aa_floor[k] = {93.7, 92.7, 92.0, 92.7};
+    const double aa_floor[k] = {94.4, 93.5, 93.0, 93.3};
     for (int phase = 0; phase < k; ++phase)
     {
         SCOPED_TRACE("from ring " + std::to_string(phase));
