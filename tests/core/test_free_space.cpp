@@ -505,6 +505,60 @@ TEST(FreeSpaceTest, AMoversLowestRingAtTheRoadsHeightGoesWithIt)
     }
 }
 
+// Online, rings 1.7 degrees apart (a 16-beam LiDAR's), the sensor standing: a box 0.3-1.4 m
+// above the road crosses 22.2 m ahead at 1.2 m per scan, between the rings that meet the road
+// (20.7 and 32.4 m away), so two rings meet it, 0.54 and 1.20 m up, and the lower is its
+// pillars' ground for the test. No pillar of it is an object (one entry clear of the ground),
+// none is next to one, and the map holds each entry static after its one sighting (p_empty_init
+// 0.5, a pillar no scan had hit): the pillars new in the map show it, the beams of the scans
+// before it having passed where it stands. The road and the wall stay.
+TEST(FreeSpaceTest, OnlineAMoverTooSmallForAnObjectIsShownWhereItIsNew)
+{
+    std::vector<double> rings;
+    for (double el = -20.0; el <= 4.0; el += 1.7) rings.push_back(el);
+    const SensorModel model = SensorModel::fromBeams(rings, 0.2);
+    const RangeImageLayout layout = RangeImageLayout::forSensor(model);
+    std::vector<Scan> scans;
+    for (int i = 0; i < 10; ++i)
+    {
+        const Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+        const double y = -6.0 + 1.2 * i;
+        const std::pair<Eigen::Vector3d, Eigen::Vector3d> box{
+            Eigen::Vector3d(22.2, y - 0.4, kGroundZ + 0.3),
+            Eigen::Vector3d(22.6, y + 0.4, kGroundZ + 1.4)};
+        scans.push_back(rayScan(
+            pose, 60.0,
+            [&](const Eigen::Vector3d& d, double& range)
+            { return groundWallAndPerson(pose.translation(), d, 45.0, box, range); },
+            1.7));
+    }
+    Params prm = freeSpaceParams();
+    prm.p_empty_init = 0.5;
+    prm.online = true;
+    PillarGrid grid(GridGeometry(), prm);
+    grid.setSensorModel(model);
+    FreeSpaceTest past(FreeSpaceTest::capacityFor(prm));
+    Removed with, without;
+    for (const Scan& s : scans)
+    {
+        grid.insertScan(s.view(), s.pose);
+        std::vector<uint8_t> dyn, dyn_map;
+        grid.classify(s.view(), dyn, s.pose, &past);
+        grid.classify(s.view(), dyn_map, s.pose);
+        with.add(s, dyn);
+        without.add(s, dyn_map);
+        past.add(s.view(), s.pose, layout);
+    }
+    // Measured: 81 % of the box's 208 points removed (none in the first scan, which has no past;
+    // none before new pillars were tested), the map alone none; no ground or wall point.
+    EXPECT_GT(with.n[kPerson], 150u);
+    EXPECT_GE(with.pct(kPerson), 70.0);
+    EXPECT_LE(without.pct(kPerson), 5.0);
+    EXPECT_GT(with.n[kGround], 10000u);
+    for (const What w : {kGround, kWall})
+        EXPECT_EQ(with.removed[w], without.removed[w]) << "kind " << int(w);
+}
+
 TEST(FreeSpaceTest, OffByDefaultAndOnlyScansWithinTheWindowCount)
 {
     const std::vector<Scan> scans = makeScans();

@@ -8,6 +8,7 @@
 
 #include "FreeSpace.h"
 #include "GridAccess.h"
+#include "hif/detail/PillarUpdate.h"
 
 namespace hif
 {
@@ -38,7 +39,14 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
     const bool prior_static = isStaticLogOdds(logit(params_.p_empty_init));
     const bool free_space_test =
         free_space && !free_space->empty() && params_.free_space_window > 0;
-    if (free_space_test) scan.floors.resize(scan.pillarCount());
+    if (free_space_test)
+    {
+        scan.floors.resize(scan.pillarCount());
+        scan.seen_once.resize(scan.cells.size());
+    }
+    // ScanBuckets::seen_once: at most p_empty_init and one hit (in the update's own floats).
+    const detail::LogOddsModel model = detail::LogOddsModel::fromParams(params_);
+    const float seen_once = model.empty_init + model.hit + 1e-4f;
     std::atomic<std::size_t> n_static{0};
     detail::forRanges(detail::GridAccess::arena(*this), scan.pillarCount(), 256,
                       [&](std::size_t p0, std::size_t p1)
@@ -52,11 +60,14 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
                               for (uint32_t k = b; k < e; ++k)
                               {
                                   bool stat = prior_static;
+                                  bool once = false;
                                   if (pil)
                                   {
                                       const Interval* iv = findInterval(*pil, scan.cells[k]);
                                       stat = isStaticLogOdds(iv ? iv->logodds : pil->logodds_empty);
+                                      once = iv && iv->logodds <= seen_once;
                                   }
+                                  if (free_space_test) scan.seen_once[k] = once;
                                   is_dynamic[scan.index[k]] = stat ? 0 : 1;
                                   local_static += stat;
                               }

@@ -910,7 +910,29 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     };
     for (const std::size_t p : small)
     {
-        if (!inOrNextToGone(unpackKey(scan.keys[p]))) continue;
+        if (!inOrNextToGone(unpackKey(scan.keys[p])))
+        {
+            // Not next to a mover, but new: every entry clear of its ground held static by this
+            // sighting alone (ScanBuckets::seen_once; online, the first sighting there: a car
+            // 36 m away behind a fence, two rings of it over the fence, each pillar too little
+            // for an object). Something that stands where the beams of other scans passed is a
+            // mover; what is seen for the first time from a new place (out of reach or hidden
+            // before) was not seen through either, and stays. Judged as from the ground up: an
+            // entry on a surface along the beams (terrain on a slope) is no evidence. (Offline,
+            // with p_empty_init under 0.5, what was seen once is dynamic by the map already.)
+            const auto first = scan.seen_once.begin() + scan.offsets[p];
+            if (std::none_of(first, scan.seen_once.begin() + scan.offsets[p + 1],
+                             [](uint8_t once) { return once != 0; }))
+                continue;
+            const auto found =
+                object.entries(scan, p, pts, is_dynamic, tested, object.clearance, false);
+            const bool fresh =
+                !tested.empty() && std::all_of(tested.begin(), tested.end(),
+                                               [&](uint32_t k) { return scan.seen_once[k] != 0; });
+            if (fresh && reachesShare(tested, prm.free_space_fraction, groundUpVerdict))
+                mark(p, found.low);
+            continue;
+        }
         auto found =
             object.entries(scan, p, pts, is_dynamic, tested, object.clearance, lowestHidden(p));
         bool share = false;

@@ -50,6 +50,10 @@ struct ScanBuckets
      *  map's lowest static interval there, kNoFloor where it holds none. */
     std::vector<int32_t> floors;
     static constexpr int32_t kNoFloor = std::numeric_limits<int32_t>::min();
+    /** Per cell entry (filled by classification for the free-space test): 1 when the map holds
+     *  it static on the evidence of one sighting at most (its interval's log-odds no more than
+     *  p_empty_init's and one hit): online, what this scan is the first to see there. */
+    std::vector<uint8_t> seen_once;
 
     Eigen::Vector3d sensor = Eigen::Vector3d::Zero();  ///< sensor position, world frame
     Eigen::Matrix3d world_to_sensor = Eigen::Matrix3d::Identity();  ///< rotation
