@@ -929,8 +929,11 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             const bool fresh =
                 !tested.empty() && std::all_of(tested.begin(), tested.end(),
                                                [&](uint32_t k) { return scan.seen_once[k] != 0; });
-            if (fresh && reachesShare(tested, prm.free_space_fraction, groundUpVerdict))
-                mark(p, found.low);
+            if (!fresh || !reachesShare(tested, prm.free_space_fraction, groundUpVerdict)) continue;
+            // Its lowest return is part of it where the scan could not see below it (the ground
+            // out of sight: a car behind a fence, its lowest ring the pillar's lowest return).
+            const int32_t lowest = scan.cells[ObjectTest::lowestEntry(scan, p)];
+            mark(p, lowestHidden(p) ? object.ground(scan, p, lowest, true) : found.low);
             continue;
         }
         auto found =
