@@ -50,9 +50,9 @@ struct ScanBuckets
      *  map's lowest static interval there, kNoFloor where it holds none. */
     std::vector<int32_t> floors;
     static constexpr int32_t kNoFloor = std::numeric_limits<int32_t>::min();
-    /** Per cell entry (filled by classification for the free-space test): 1 when the map holds
-     *  it static on the evidence of one sighting at most (its interval's log-odds no more than
-     *  p_empty_init's and one hit): online, what this scan is the first to see there. */
+    /** Per cell entry (filled by classification for the free-space test): 1 when its interval
+     *  in the map has log-odds no more than p_empty_init's and one hit, so that what the map
+     *  holds static there rests on one sighting at most: online, on this scan's. */
     std::vector<uint8_t> seen_once;
 
     Eigen::Vector3d sensor = Eigen::Vector3d::Zero();  ///< sensor position, world frame
