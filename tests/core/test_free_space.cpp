@@ -185,6 +185,15 @@ std::vector<Scan> makeScans(double ego = 0.0)
     return scans;
 }
 
+/** A sensor model whose rings lie `spacing` degrees apart from -20 to +4 degrees (the rows of
+ *  rayScan() with that row spacing), 0.2 degrees apart horizontally. */
+SensorModel ringsEvery(double spacing)
+{
+    std::vector<double> rings;
+    for (double el = -20.0; el <= 4.0; el += spacing) rings.push_back(el);
+    return SensorModel::fromBeams(rings, 0.2);
+}
+
 Params freeSpaceParams()
 {
     Params p;
@@ -391,9 +400,7 @@ TEST(FreeSpaceTest, TheLowPartsOfAMoverGoWithItIntoTheNextPillars)
 // scan with a test that holds it and with one that does not, gives the same classes.
 TEST(FreeSpaceTest, GroundAlongTheBeamsNextToAWalkerIsNotJudged)
 {
-    std::vector<double> rings;
-    for (double el = -20.0; el <= 4.0; el += 1.7) rings.push_back(el);
-    const SensorModel model = SensorModel::fromBeams(rings, 0.2);
+    const SensorModel model = ringsEvery(1.7);
     const RangeImageLayout layout = RangeImageLayout::forSensor(model);
     std::vector<Scan> scans;
     for (int i = 0; i < 10; ++i)
@@ -451,9 +458,7 @@ TEST(FreeSpaceTest, GroundAlongTheBeamsNextToAWalkerIsNotJudged)
 // through its points meet it).
 TEST(FreeSpaceTest, AMoversLowestRingAtTheRoadsHeightGoesWithIt)
 {
-    std::vector<double> rings;
-    for (double el = -20.0; el <= 4.0; el += 0.85) rings.push_back(el);
-    const SensorModel model = SensorModel::fromBeams(rings, 0.2);
+    const SensorModel model = ringsEvery(0.85);
     const RangeImageLayout layout = RangeImageLayout::forSensor(model);
     for (const double ego : {0.0, 0.3})
     {
@@ -514,9 +519,7 @@ TEST(FreeSpaceTest, AMoversLowestRingAtTheRoadsHeightGoesWithIt)
 // before it having passed where it stands. The road and the wall stay.
 TEST(FreeSpaceTest, OnlineAMoverTooSmallForAnObjectIsShownWhereItIsNew)
 {
-    std::vector<double> rings;
-    for (double el = -20.0; el <= 4.0; el += 1.7) rings.push_back(el);
-    const SensorModel model = SensorModel::fromBeams(rings, 0.2);
+    const SensorModel model = ringsEvery(1.7);
     const RangeImageLayout layout = RangeImageLayout::forSensor(model);
     std::vector<Scan> scans;
     for (int i = 0; i < 10; ++i)
