@@ -39,14 +39,15 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
     const bool prior_static = isStaticLogOdds(logit(params_.p_empty_init));
     const bool free_space_test =
         free_space && !free_space->empty() && params_.free_space_window > 0;
+    // ScanBuckets::seen_once: at most p_empty_init and one hit (in the update's own floats).
+    float seen_once = 0.0f;
     if (free_space_test)
     {
         scan.floors.resize(scan.pillarCount());
         scan.seen_once.resize(scan.cells.size());
+        const detail::LogOddsModel model = detail::LogOddsModel::fromParams(params_);
+        seen_once = model.empty_init + model.hit + 1e-4f;
     }
-    // ScanBuckets::seen_once: at most p_empty_init and one hit (in the update's own floats).
-    const detail::LogOddsModel model = detail::LogOddsModel::fromParams(params_);
-    const float seen_once = model.empty_init + model.hit + 1e-4f;
     std::atomic<std::size_t> n_static{0};
     detail::forRanges(detail::GridAccess::arena(*this), scan.pillarCount(), 256,
                       [&](std::size_t p0, std::size_t p1)

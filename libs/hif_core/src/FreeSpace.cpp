@@ -535,6 +535,9 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         }
         return *own;
     };
+    // Input point i in the world frame.
+    auto worldOf = [&](uint32_t i) -> Eigen::Vector3d
+    { return R * Eigen::Vector3d(pts.x[i], pts.y[i], pts.z[i]) + t; };
     // What the judges say about input point i: the judges that saw it occupied, with
     // this scan, span a stretch of time; only a judge outside it that saw through the point
     // shows it gone. On each side of the scan, walking in from the farthest judge, the first
@@ -542,7 +545,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // it, so no nearer judge of that side can show the point gone.
     auto pointVerdict = [&](uint32_t i)
     {
-        const Eigen::Vector3d p_w = R * Eigen::Vector3d(pts.x[i], pts.y[i], pts.z[i]) + t;
+        const Eigen::Vector3d p_w = worldOf(i);
         const Eigen::Vector3d from_self = p_w - t;
         const double self_dist = from_self.norm();
         std::fill(seen.begin(), seen.end(), Seen::Unknown);
@@ -770,11 +773,16 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // and leaves last: the first of them shown gone shows the entry gone. (The first point
     // alone would test only the edge the sweep meets first: a walker moving with the sweep
     // would show only its trailing edge.)
-    auto verdict = [&](uint32_t k)
+    // The last input point of the run that input point `first` begins (its repeats follow it).
+    auto lastOfRun = [&](uint32_t first)
     {
-        const uint32_t first = scan.index[k];
         uint32_t last = first;
         while (last + 1 < pts.size && scan.repeats[last + 1]) ++last;
+        return last;
+    };
+    auto verdict = [&](uint32_t k)
+    {
+        const uint32_t first = scan.index[k], last = lastOfRun(first);
         const Verdict a = pointVerdict(first);
         if (a == Verdict::Gone || last == first) return a;
         const Verdict b = pointVerdict(last);
@@ -789,7 +797,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // beyond or in front.
     auto goneByOwnBeams = [&](uint32_t i)
     {
-        const Eigen::Vector3d p_w = R * Eigen::Vector3d(pts.x[i], pts.y[i], pts.z[i]) + t;
+        const Eigen::Vector3d p_w = worldOf(i);
         const Eigen::Vector3d from_self = p_w - t;
         const double self_dist = from_self.norm();
         auto side = [&](std::size_t count, auto judgeAt)
@@ -818,14 +826,13 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // seen occupied, by the beams through its own cell (goneByOwnBeams(); either end of its
     // run, as verdict()). The ground under a mover is seen occupied by the scans before and
     // after the mover stood on it.
+    // Whether entry k lies on a surface along the beams (alongBeams(), in the scan's own image).
+    auto alongBeamsAt = [&](uint32_t k)
+    { return alongBeams(ownJudge(), worldOf(scan.index[k]), margin); };
     auto ownEvidence = [&](uint32_t k)
     {
-        const uint32_t first = scan.index[k];
-        const Eigen::Vector3d p_w =
-            R * Eigen::Vector3d(pts.x[first], pts.y[first], pts.z[first]) + t;
-        if (alongBeams(ownJudge(), p_w, margin)) return false;
-        uint32_t last = first;
-        while (last + 1 < pts.size && scan.repeats[last + 1]) ++last;
+        if (alongBeamsAt(k)) return false;
+        const uint32_t first = scan.index[k], last = lastOfRun(first);
         return goneByOwnBeams(first) || (last != first && goneByOwnBeams(last));
     };
     std::size_t marked = 0;
@@ -848,12 +855,13 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     std::vector<std::size_t> small;  // pillars with too little above the ground for an object
     // What the map found dynamic of a pillar, or the test shows gone, is part of a mover, and so
     // is the pillar's lowest return where the scan could not see below it (groundHidden()).
-    auto lowestHidden = [&](std::size_t p)
-    {
-        const uint32_t i = scan.index[ObjectTest::lowestEntry(scan, p)];
-        const Eigen::Vector3d p_w = R * Eigen::Vector3d(pts.x[i], pts.y[i], pts.z[i]) + t;
-        return groundHidden(ownJudge(), p_w, margin);
+    auto lowestHidden = [&](std::size_t p) {
+        return groundHidden(ownJudge(), worldOf(scan.index[ObjectTest::lowestEntry(scan, p)]),
+                            margin);
     };
+    // The ground of pillar p when its lowest return is part of what stands there (hidden).
+    auto groundBelowLowest = [&](std::size_t p)
+    { return object.ground(scan, p, scan.cells[ObjectTest::lowestEntry(scan, p)], true); };
     for (std::size_t p = 0; p < scan.pillarCount(); ++p)
     {
         bool any_dynamic = false;
@@ -866,9 +874,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         {
             if (reachesShare(tested, prm.free_space_fraction, verdict))
             {
-                if (!any_dynamic && lowestHidden(p))
-                    found.low =
-                        object.ground(scan, p, scan.cells[ObjectTest::lowestEntry(scan, p)], true);
+                if (!any_dynamic && lowestHidden(p)) found.low = groundBelowLowest(p);
                 mark(p, found.low);
                 mover = true;
             }
@@ -903,11 +909,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // Tested from its ground up, the pillar's ground is among what is tested: an entry on a
     // surface along the beams (alongBeams(), seen in the scan's own image) is not judged.
     auto groundUpVerdict = [&](uint32_t k)
-    {
-        const uint32_t i = scan.index[k];
-        const Eigen::Vector3d p_w = R * Eigen::Vector3d(pts.x[i], pts.y[i], pts.z[i]) + t;
-        return alongBeams(ownJudge(), p_w, margin) ? Verdict::Unjudged : verdict(k);
-    };
+    { return alongBeamsAt(k) ? Verdict::Unjudged : verdict(k); };
     for (const std::size_t p : small)
     {
         if (!inOrNextToGone(unpackKey(scan.keys[p])))
@@ -932,8 +934,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             if (!fresh || !reachesShare(tested, prm.free_space_fraction, groundUpVerdict)) continue;
             // Its lowest return is part of it where the scan could not see below it (the ground
             // out of sight: a car behind a fence, its lowest ring the pillar's lowest return).
-            const int32_t lowest = scan.cells[ObjectTest::lowestEntry(scan, p)];
-            mark(p, lowestHidden(p) ? object.ground(scan, p, lowest, true) : found.low);
+            mark(p, lowestHidden(p) ? groundBelowLowest(p) : found.low);
             continue;
         }
         auto found =
