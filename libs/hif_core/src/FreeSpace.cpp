@@ -852,7 +852,14 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     };
     std::vector<uint32_t> tested;
     std::vector<std::pair<int64_t, int64_t>> gone;  // pillars of a mover, (m, n)
-    std::vector<std::size_t> small;  // pillars with too little above the ground for an object
+    // Pillars with too little above the ground for an object, and whether the map found part
+    // of one dynamic where beams had seen the place empty (ScanBuckets::seen_empty).
+    struct Small
+    {
+        std::size_t p;
+        bool seen_empty;
+    };
+    std::vector<Small> small;
     // What the map found dynamic of a pillar, or the test shows gone, is part of a mover, and so
     // is the pillar's lowest return where the scan could not see below it (groundHidden()).
     auto lowestHidden = [&](std::size_t p) {
@@ -880,7 +887,12 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             }
         }
         else
-            small.push_back(p);
+        {
+            bool seen_empty = false;
+            for (uint32_t k = scan.offsets[p]; k < scan.offsets[p + 1] && !seen_empty; ++k)
+                seen_empty = is_dynamic[scan.index[k]] != 0 && scan.seen_empty[k] != 0;
+            small.push_back({p, seen_empty});
+        }
         if (mover)
         {
             const PillarIndex idx = unpackKey(scan.keys[p]);
@@ -891,10 +903,15 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // lowest parts (feet, wheels, bumpers): too little there to make an object of their own,
     // they are tested as part of it. So is what the map kept of it in its own pillar (a pillar
     // whose points the map found dynamic, but for too little to test alone: the wheels below a
-    // rider, a walker's last ring). A pillar with nothing clear of its ground (all of it
-    // within the clearance of its lowest return: one ring, with sparse rings a car's sill alone
-    // in its pillar) is tested from its ground up: the ground there is seen occupied by the
-    // beams that meet it, a mover's low ring is seen through outside its time.
+    // rider, a walker's last ring), and what it kept of a pillar where it found part of one
+    // dynamic because beams had seen that place empty (the map's own evidence that something
+    // moved there, not only its prior: with sparse rings a car that keeps pace 28 m ahead,
+    // seen by two rings, the upper one in space earlier beams passed through, the lower one
+    // held static, the car's body having covered the pillar for several scans). A pillar with
+    // nothing clear of its ground (all of it within the clearance of its lowest return: one
+    // ring, with sparse rings a car's sill alone in its pillar) is tested from its ground up:
+    // the ground there is seen occupied by the beams that meet it, a mover's low ring is seen
+    // through outside its time.
     std::sort(gone.begin(), gone.end());
     auto inOrNextToGone = [&](PillarIndex idx)
     {
@@ -910,9 +927,9 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // surface along the beams (alongBeams(), seen in the scan's own image) is not judged.
     auto groundUpVerdict = [&](uint32_t k)
     { return alongBeamsAt(k) ? Verdict::Unjudged : verdict(k); };
-    for (const std::size_t p : small)
+    for (const auto& [p, seen_empty] : small)
     {
-        if (!inOrNextToGone(unpackKey(scan.keys[p])))
+        if (!seen_empty && !inOrNextToGone(unpackKey(scan.keys[p])))
         {
             // Not next to a mover, but new: every entry clear of its ground held static by this
             // sighting alone (ScanBuckets::seen_once; online, the first sighting there: a car
