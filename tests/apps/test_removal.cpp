@@ -254,11 +254,13 @@ INSTANTIATE_TEST_SUITE_P(Sequences, RealKitti,
                                            std::make_tuple("04", 98.9, 95.0)));
 
 // Online (each scan judged with the past only, kitti-online.ini), floors a little under what the
-// shipped config measures: 01 SA 99.18, car DA 73.29 (70.46 before new pillars too small for an
-// object were tested, 69.35 before a mover's lowest ring at the road's height went with it,
-// 66.18 before a pillar's lowest return out of sight of the ground went with the mover); 03 SA
-// 98.74 (97.83 before p_empty held only where beams had passed); 04 SA 98.95, AA 93.11, person
-// DA 61.69 (59.74). Deterministic: a failure is a regression.
+// shipped config measures: 01 SA 99.17, car DA 74.94 (74.37 before a pillar the map saw partly
+// empty was tested as a mover's, 73.29 before the lowest return of a new pillar shown gone went
+// with it, 70.46 before new pillars too small for an object were tested, 69.35 before a mover's
+// lowest ring at the road's height went with it, 66.18 before a pillar's lowest return out of sight
+// of the ground went with the mover); 03 SA 98.74 (97.83 before p_empty held only where beams had
+// passed); 04 SA 98.95, AA 93.11, person DA 61.69 (59.74). Deterministic: a failure is a
+// regression.
 TEST(RealKittiOnline, OnlineCleaningMeetsTheFloors)
 {
     struct Floors
@@ -267,7 +269,7 @@ TEST(RealKittiOnline, OnlineCleaningMeetsTheFloors)
         double sa, da;
     };
     for (const Floors& f :
-         std::vector<Floors>{{"01", 99.0, 72.0}, {"03", 98.5, 0.0}, {"04", 98.8, 86.0}})
+         std::vector<Floors>{{"01", 99.0, 74.0}, {"03", 98.5, 0.0}, {"04", 98.8, 86.0}})
     {
         SCOPED_TRACE(f.seq);
         const std::string dir = hif::test::kittiRoot() + "/sequences/" + f.seq;
