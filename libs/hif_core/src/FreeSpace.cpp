@@ -257,6 +257,36 @@ bool facesBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& m
     return in_row && in_column;
 }
 
+/** Returns of one column of scan `own`'s image placed along the azimuth of world point `p`,
+ *  in the world frame: horizontal distance from the sensor and height, metres. */
+struct ColumnPlaces
+{
+    const Judge& own;
+    double ux = 0.0, uy = 0.0;  ///< the azimuth's direction, sensor frame
+
+    ColumnPlaces(const Judge& j, const Eigen::Vector3d& p) : own(j)
+    {
+        const Eigen::Vector3d q = own.Rt * (p - own.t);
+        const double rxy = std::sqrt(q.x() * q.x() + q.y() * q.y());
+        ux = q.x() / rxy;
+        uy = q.y() / rxy;
+    }
+    /** A return of `row` at `range`. */
+    [[nodiscard]] Eigen::Vector2d at(int row, float range) const
+    {
+        const RangeImageLayout& l = *own.layout;
+        const double tan_el = l.tan_min + (row + 0.5) * l.tan_res;
+        const double s = static_cast<double>(range) / std::sqrt(1.0 + tan_el * tan_el);
+        const Eigen::Vector3d w = own.Rt.transpose() * Eigen::Vector3d(s * ux, s * uy, s * tan_el);
+        return {std::sqrt(w.x() * w.x() + w.y() * w.y()), w.z()};
+    }
+    /** Whether the line from `a` to `b` stands more than 45 degrees from the horizontal. */
+    [[nodiscard]] static bool steep(const Eigen::Vector2d& a, const Eigen::Vector2d& b)
+    {
+        return std::abs(a.y() - b.y()) > std::abs(a.x() - b.x());
+    }
+};
+
 /** Whether scan `own` could not see below world point `p`, the lowest return of a pillar:
  *  in its column of `own`'s image, the nearest beam below it (up to one and a half beam
  *  spacings: three rows of half a spacing) returned in front of it by more than the margin,
@@ -269,28 +299,42 @@ bool groundHidden(const Judge& own, const Eigen::Vector3d& p, const RangeMargin&
 {
     const auto cell = cellOf(own, p);
     if (!cell) return false;
-    const RangeImageLayout& l = *own.layout;
-    const Eigen::Vector3d q = own.Rt * (p - own.t);
-    const double rxy = std::sqrt(q.x() * q.x() + q.y() * q.y());
-    const double ux = q.x() / rxy, uy = q.y() / rxy;
-    // The nearest return below `row` in the point's column; its row, or -1.
-    auto below = [&](int row, float& range) { return nextInColumn(own, row, cell->c, -1, range); };
-    // A return of `row` at `range` along the point's azimuth, world frame: horizontal distance
-    // from the sensor and height.
-    auto place = [&](int row, float range)
-    {
-        const double tan_el = l.tan_min + (row + 0.5) * l.tan_res;
-        const double s = static_cast<double>(range) / std::sqrt(1.0 + tan_el * tan_el);
-        const Eigen::Vector3d w = own.Rt.transpose() * Eigen::Vector3d(s * ux, s * uy, s * tan_el);
-        return Eigen::Vector2d(std::sqrt(w.x() * w.x() + w.y() * w.y()), w.z());
-    };
     float f1 = 0.0f, f2 = 0.0f;
-    const int r1 = below(cell->r, f1);
+    const int r1 = nextInColumn(own, cell->r, cell->c, -1, f1);
     if (r1 < 0 || !(f1 < cell->d - margin.at(cell->d))) return false;
-    const int r2 = below(r1, f2);
+    const int r2 = nextInColumn(own, r1, cell->c, -1, f2);
     if (r2 < 0) return false;
-    const Eigen::Vector2d a = place(r1, f1), b = place(r2, f2);
-    return std::abs(a.y() - b.y()) > std::abs(a.x() - b.x());
+    const ColumnPlaces column(own, p);
+    return ColumnPlaces::steep(column.at(r1, f1), column.at(r2, f2));
+}
+
+/** Whether world point `p`, the lowest return of a pillar, stands above ground out of sight of
+ *  scan `own`: it lies on a surface that faces the beams (facesBeams(): a car's side, a
+ *  walker's legs) and rises from it (the next beam up its column of `own`'s image returned
+ *  within the margin of it), more than `above` metres above the line of the two returns below
+ *  it in that column (the ground in front carried on under it). Ground is met at grazing
+ *  incidence, and the ground at the foot of what stands there lies on that line; the ground
+ *  behind a face is hidden by it. */
+bool standsAboveGround(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& margin,
+                       double above)
+{
+    const auto cell = cellOf(own, p);
+    if (!cell) return false;
+    float up = 0.0f;
+    if (nextInColumn(own, cell->r, cell->c, 1, up) < 0 ||
+        !(std::abs(static_cast<double>(up) - cell->d) <= margin.at(cell->d)) ||
+        !facesBeams(own, p, margin))
+        return false;
+    float f1 = 0.0f, f2 = 0.0f;
+    const int r1 = nextInColumn(own, cell->r, cell->c, -1, f1);
+    const int r2 = r1 < 0 ? -1 : nextInColumn(own, r1, cell->c, -1, f2);
+    if (r2 < 0) return false;
+    const ColumnPlaces column(own, p);
+    const Eigen::Vector2d a = column.at(r1, f1), b = column.at(r2, f2);
+    if (!(a.x() - b.x() > 0.0)) return false;  // no line running away from the sensor
+    const Eigen::Vector3d w = p - own.t;       // from the sensor, world axes
+    const double d = std::sqrt(w.x() * w.x() + w.y() * w.y());
+    return w.z() - (a.y() + (d - a.x()) * (a.y() - b.y()) / (a.x() - b.x())) > above;
 }
 
 /** What the test's scans say about one point, all opinions taken together. */
@@ -379,6 +423,9 @@ struct ObjectTest
          *  nothing there is ground, which the map holds static (a car far away on a road that
          *  climbs, whose lowest ring the test would otherwise take for the ground). */
         bool moving;
+        /** All entries within range from the lowest up make one: the lowest return counted as
+         *  part of what stands there would make it an object. */
+        bool from_lowest;
     };
 
     /** The entry of pillar `p` of `scan` in its lowest height cell (the first of them). */
@@ -429,7 +476,7 @@ struct ObjectTest
                 tested.push_back(k);
         }
         return {low, !tested.empty() && isObject(all),
-                isObject(dynamic) || (every_dynamic && isObject(every))};
+                isObject(dynamic) || (every_dynamic && isObject(every)), isObject(every)};
     }
 };
 
@@ -861,10 +908,20 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     };
     std::vector<Small> small;
     // What the map found dynamic of a pillar, or the test shows gone, is part of a mover, and so
-    // is the pillar's lowest return where the scan could not see below it (groundHidden()).
-    auto lowestHidden = [&](std::size_t p) {
-        return groundHidden(ownJudge(), worldOf(scan.index[ObjectTest::lowestEntry(scan, p)]),
-                            margin);
+    // is the pillar's lowest return where the scan could not see below it: what hid the ground
+    // stands in front of it (groundHidden()), or, with a ringed sensor, the return lies on a
+    // surface facing the beams above the ground carried on from in front by more than half the
+    // clearance (standsAboveGround(): a car's side 24 m away, where a 16-beam LiDAR's lower
+    // ring meets it 0.4 m above the road, the road at its foot behind it; within half the
+    // clearance of that line, marked only on its own evidence as mark() does, it is the ground
+    // at the foot of what stands there). Without rings the next return down an image column
+    // is no next beam of the same sweep.
+    const bool rings = grid.sensorModel() && grid.sensorModel()->hasRings();
+    auto lowestHidden = [&](std::size_t p)
+    {
+        const Eigen::Vector3d lowest = worldOf(scan.index[ObjectTest::lowestEntry(scan, p)]);
+        return groundHidden(ownJudge(), lowest, margin) ||
+               (rings && standsAboveGround(ownJudge(), lowest, margin, below * res));
     };
     // The ground of pillar p when its lowest return is part of what stands there (hidden).
     auto groundBelowLowest = [&](std::size_t p)
@@ -874,14 +931,22 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         bool any_dynamic = false;
         for (uint32_t k = scan.offsets[p]; k < scan.offsets[p + 1] && !any_dynamic; ++k)
             any_dynamic = is_dynamic[scan.index[k]] != 0;
-        auto found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance,
-                                    any_dynamic && lowestHidden(p));
+        bool hidden = any_dynamic && lowestHidden(p);
+        auto found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance, hidden);
+        // Too little clear of the lowest return for an object, but enough with it where it is
+        // no ground (hidden): a car 24 m away met by two rings of a 16-beam LiDAR, 0.4 and 1.2 m
+        // above the road. Asked only where it can make the object.
+        if (!found.object && !hidden && !tested.empty() && found.from_lowest && lowestHidden(p))
+        {
+            hidden = true;
+            found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance, true);
+        }
         bool mover = found.moving;
         if (found.object)
         {
             if (reachesShare(tested, prm.free_space_fraction, verdict))
             {
-                if (!any_dynamic && lowestHidden(p)) found.low = groundBelowLowest(p);
+                if (!any_dynamic && (hidden || lowestHidden(p))) found.low = groundBelowLowest(p);
                 mark(p, found.low);
                 mover = true;
             }
