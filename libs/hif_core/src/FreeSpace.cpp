@@ -513,6 +513,17 @@ bool reachesShare(const std::vector<uint32_t>& tested, double fraction, VerdictO
 
 }  // namespace
 
+/** The stretch rule's walk over one side of the classified scan (`count` judges, the k-th
+ *  nearest in time judgeAt(k)): walking in from the farthest, the first judge `j` for which
+ *  `settles(j)` holds settles the side. How far in time it is (k + 1), or 0 for none. */
+template <typename JudgeAt, typename Settles>
+std::size_t settledAt(std::size_t count, JudgeAt&& judgeAt, Settles&& settles)
+{
+    for (std::size_t k = count; k-- > 0;)
+        if (settles(judgeAt(k))) return k + 1;
+    return 0;
+}
+
 std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, const PointsView& pts,
                             const Eigen::Isometry3d& T, const FreeSpaceTest& test,
                             std::vector<uint8_t>& is_dynamic, std::size_t& judge_count)
@@ -553,6 +564,9 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
                                                          { return j.pos < pos; }) -
                                         judges.begin())
              : judges.size();
+    // The k-th nearest judge in time before the classified scan, and after it.
+    auto earlier = [&](std::size_t k) { return self_pos - 1 - k; };
+    auto later = [&](std::size_t k) { return self_pos + k; };
 
     // Where each judge sees the point being judged (within the view limit), found at most once
     // per judge and point: the rules below ask the same judges again.
@@ -647,23 +661,12 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         // Each side, walking in from the farthest judge: how far in time (in judges) the one
         // that settled it was (0: none did).
         bool gone = false;
-        std::size_t settled_before = 0, settled_after = 0;
-        BeamOffset at_before{0.0, 0.0}, at_after{0.0, 0.0};
-        for (std::size_t j = 0; j < self_pos; ++j)  // the earlier judges, oldest first
-            if (settles(j, gone))
-            {
-                settled_before = self_pos - j;
-                at_before = at;
-                break;
-            }
+        auto settlesSide = [&](std::size_t j) { return settles(j, gone); };
+        const std::size_t settled_before = settledAt(self_pos, earlier, settlesSide);
+        const BeamOffset at_before = settled_before ? at : BeamOffset{0.0, 0.0};
         if (gone) return Verdict::Gone;
-        for (std::size_t j = judges.size(); j-- > self_pos;)  // the later ones, newest first
-            if (settles(j, gone))
-            {
-                settled_after = j - self_pos + 1;
-                at_after = at;
-                break;
-            }
+        const std::size_t settled_after = settledAt(judges.size() - self_pos, later, settlesSide);
+        const BeamOffset at_after = settled_after ? at : BeamOffset{0.0, 0.0};
         if (gone) return Verdict::Gone;
         // A surface that moved along the beams toward the sensor (a person walking along the
         // line of sight): walking out from the nearest judge in time, each one's beam toward
@@ -679,8 +682,6 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             if (!c) return std::nullopt;
             return beamOffset(judges[j], *c, margin);
         };
-        auto earlier = [&](std::size_t k) { return self_pos - 1 - k; };
-        auto later = [&](std::size_t k) { return self_pos + k; };
         auto drifted = [&](std::size_t count, auto judgeAt, std::size_t settled)
         {
             // The judges beyond the one that settled the side gave no opinion, so the beam
@@ -847,22 +848,18 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         const Eigen::Vector3d p_w = worldOf(i);
         const Eigen::Vector3d from_self = p_w - t;
         const double self_dist = from_self.norm();
-        auto side = [&](std::size_t count, auto judgeAt)
+        bool gone = false;
+        auto settles = [&](std::size_t j)
         {
-            for (std::size_t k = count; k-- > 0;)
-            {
-                const Judge& j = judges[judgeAt(k)];
-                if (!parallax.inView(j, p_w, from_self, self_dist)) continue;
-                const auto c = cellOf(j, p_w);
-                if (!c) continue;
-                const View v = look(j, *c, margin, true).view;
-                if (v == View::Free) return true;
-                if (v == View::Occupied) return false;
-            }
-            return false;
+            if (!parallax.inView(judges[j], p_w, from_self, self_dist)) return false;
+            const auto c = cellOf(judges[j], p_w);
+            if (!c) return false;
+            const View v = look(judges[j], *c, margin, true).view;
+            gone = v == View::Free;
+            return gone || v == View::Occupied;
         };
-        return side(self_pos, [&](std::size_t k) { return self_pos - 1 - k; }) ||
-               side(judges.size() - self_pos, [&](std::size_t k) { return self_pos + k; });
+        return (settledAt(self_pos, earlier, settles) && gone) ||
+               (settledAt(judges.size() - self_pos, later, settles) && gone);
     };
     // Below half the clearance, a mover's pillar holds the ground under it, or the mover's own
     // lowest part at the ground's height: a car's wheels and sill, a walker's feet, where a
@@ -919,10 +916,14 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     const bool rings = grid.sensorModel() && grid.sensorModel()->hasRings();
     auto lowestOf = [&](std::size_t p)
     { return worldOf(scan.index[ObjectTest::lowestEntry(scan, p)]); };
-    auto lowestOnFace = [&](std::size_t p)
-    { return rings && standsAboveGround(ownJudge(), lowestOf(p), margin, below * res); };
+    auto onFace = [&](const Eigen::Vector3d& lowest)
+    { return rings && standsAboveGround(ownJudge(), lowest, margin, below * res); };
+    auto lowestOnFace = [&](std::size_t p) { return onFace(lowestOf(p)); };
     auto lowestHidden = [&](std::size_t p)
-    { return groundHidden(ownJudge(), lowestOf(p), margin) || lowestOnFace(p); };
+    {
+        const Eigen::Vector3d lowest = lowestOf(p);
+        return groundHidden(ownJudge(), lowest, margin) || onFace(lowest);
+    };
     // The ground of pillar p when its lowest return is part of what stands there (hidden).
     auto groundBelowLowest = [&](std::size_t p)
     { return object.ground(scan, p, scan.cells[ObjectTest::lowestEntry(scan, p)], true); };
