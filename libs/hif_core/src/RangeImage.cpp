@@ -6,6 +6,7 @@
 #include "RangeImage.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -157,6 +158,72 @@ void fillImage(const RangeImageLayout& l, const PointsView& pts, std::vector<T>&
     }
 }
 }  // namespace
+
+namespace
+{
+uint64_t passedRowsScalar(const RangeImageLayout& l, const BeamReturn* column, int row_lo, int n,
+                          double d, double margin)
+{
+    uint64_t mask = 0;
+    for (int k = 0; k < n; ++k)
+    {
+        const BeamReturn& ret = column[row_lo + k];
+        if (ret.range_cm != BeamReturn::kNone &&
+            passesBeyond(ret.range(), rowDist2(l, d, row_lo + k), margin))
+            mask |= uint64_t{1} << k;
+    }
+    return mask;
+}
+
+#if HIF_X86_AVX
+/** passedRowsScalar() four rows at a time: the same operations, so the same bits. */
+__attribute__((target("avx"))) uint64_t passedRowsAvx(const RangeImageLayout& l,
+                                                      const BeamReturn* column, int row_lo, int n,
+                                                      double d, double margin)
+{
+    static_assert(sizeof(BeamReturn) == 4 && offsetof(BeamReturn, range_cm) == 0,
+                  "a cell's range is the low half of its four bytes");
+    const __m128i low16 = _mm_set1_epi32(0xFFFF);
+    const __m128 cm = _mm_set1_ps(0.01f);
+    const __m256d dd = _mm256_set1_pd(d * d), one = _mm256_set1_pd(1.0);
+    const __m256d half = _mm256_set1_pd(0.5), four = _mm256_set1_pd(4.0);
+    const __m256d tan_min = _mm256_set1_pd(l.tan_min), tan_res = _mm256_set1_pd(l.tan_res);
+    const __m256d mrg = _mm256_set1_pd(margin), zero = _mm256_setzero_pd();
+    __m256d rows = _mm256_set_pd(row_lo + 3, row_lo + 2, row_lo + 1, row_lo);
+    uint64_t mask = 0;
+    int k = 0;
+    for (; k + 4 <= n; k += 4)
+    {
+        const __m128i raw = _mm_loadu_si128(reinterpret_cast<const __m128i*>(column + row_lo + k));
+        const __m128i range_cm = _mm_and_si128(raw, low16);
+        const __m128i none = _mm_cmpeq_epi32(range_cm, low16);
+        // BeamReturn::range(), then rowDist2() and passesBeyond().
+        const __m256d r = _mm256_cvtps_pd(_mm_mul_ps(_mm_cvtepi32_ps(range_cm), cm));
+        const __m256d tan_el =
+            _mm256_add_pd(tan_min, _mm256_mul_pd(_mm256_add_pd(rows, half), tan_res));
+        const __m256d dist2 = _mm256_mul_pd(dd, _mm256_add_pd(one, _mm256_mul_pd(tan_el, tan_el)));
+        const __m256d beyond = _mm256_sub_pd(r, mrg);
+        const __m256d ok =
+            _mm256_and_pd(_mm256_cmp_pd(beyond, zero, _CMP_GT_OQ),
+                          _mm256_cmp_pd(_mm256_mul_pd(beyond, beyond), dist2, _CMP_GT_OQ));
+        const int bits = _mm256_movemask_pd(ok) & ~_mm_movemask_ps(_mm_castsi128_ps(none));
+        mask |= static_cast<uint64_t>(bits) << k;
+        rows = _mm256_add_pd(rows, four);
+    }
+    if (k < n) mask |= passedRowsScalar(l, column, row_lo + k, n - k, d, margin) << k;
+    return mask;
+}
+#endif
+}  // namespace
+
+uint64_t passedRows(const RangeImageLayout& l, const BeamReturn* column, int row_lo, int n,
+                    double d, double margin)
+{
+#if HIF_X86_AVX
+    if (useAvx()) return passedRowsAvx(l, column, row_lo, n, d, margin);
+#endif
+    return passedRowsScalar(l, column, row_lo, n, d, margin);
+}
 
 float buildReturnImage(const RangeImageLayout& l, const PointsView& pts,
                        std::vector<BeamReturn>& img, std::vector<uint8_t>& blocks)

@@ -117,6 +117,32 @@ struct BeamReturn
     }
 };
 
+/** Squared distance, along the middle of `row` of an image laid out as `l`, to a pillar's axis
+ *  at horizontal distance `d`. */
+inline double rowDist2(const RangeImageLayout& l, double d, int row)
+{
+    const double tan_el = l.tan_min + (row + 0.5) * l.tan_res;
+    return d * d * (1.0 + tan_el * tan_el);
+}
+
+/** Whether a return at range `r` passed a pillar at squared distance `dist2` along its beam
+ *  (rowDist2()): it lies farther by more than `margin`. */
+inline bool passesBeyond(double r, double dist2, double margin)
+{
+    const double beyond = r - margin;
+    return beyond > 0.0 && beyond * beyond > dist2;
+}
+
+/** Bit k of the result: whether the return of row row_lo + k of `column` (one column of an
+ *  image laid out as `l`, k < n <= 64) passed a pillar at horizontal distance `d` by more than
+ *  `margin` (passesBeyond()); 0 where no return. Four rows at a time with AVX when useAvx()
+ *  (the same bits as one at a time). */
+uint64_t passedRows(const RangeImageLayout& l, const BeamReturn* column, int row_lo, int n,
+                    double d, double margin);
+
+/** The index of the highest set bit of `m` (not 0). */
+inline int highestBit(uint64_t m) { return 63 - __builtin_clzll(m); }
+
 /** Cells of a block of buildReturnImage()'s `blocks` (the sky test of BeamGate looks this far
  *  aside). */
 constexpr int kBlockCols = 8;
@@ -227,37 +253,54 @@ struct BeamGate
     {
         Axis a;
         if (!axisOf(lo, hi, a)) return false;
-        bool any = false;
+        // From the top row down: beams above what stands in the pillar pass first; until one
+        // has, every column's beam counts, then only the centre's is read. Rows are taken a
+        // block at a time (passedRows()), the first ones in short blocks: a beam passes after
+        // a few rows in most pillars.
+        constexpr int kFirstBlock = 16;
         int run_top = -1;  // the top row of the run of rows that passed, walking down
+        int row = a.row1;
+        while (row >= a.row0 && run_top < 0)
+        {
+            const int block_lo = std::max(a.row0, row - kFirstBlock + 1);
+            uint64_t m = 0;
+            for (int k = 0; k < a.ncols; ++k)
+                m |= passedRows(*layout, columnOf(a.cols[k]), block_lo, row - block_lo + 1, a.d,
+                                margin);
+            if (m != 0) run_top = block_lo + highestBit(m);
+            row = m != 0 ? run_top - 1 : block_lo - 1;
+        }
+        if (run_top < 0) return false;
+        // The rest of the centre's column, down the image (a column is contiguous): each run
+        // of rows that passed, from its top row to the row under its bottom.
+        const BeamReturn* column = columnOf(a.cols[a.ncols / 2]);
         auto endRun = [&](int bottom)
         {
-            if (run_top < 0) return;
             const Span b = rowsCells(bottom, run_top + 1, a);
             passed.add(b.lo, b.hi);
             run_top = -1;
         };
-        // From the top row down: beams above what stands in the pillar pass first; until one
-        // has, every column's beam counts for `any`, then only the centre's is read.
-        int row = a.row1;
-        for (; row >= a.row0 && !any; --row)
+        while (row >= a.row0)
         {
-            for (int k = 0; k < a.ncols && !any; ++k)
-                any = beamOf(cellAt(row, a.cols[k]), a, row) == Beam::Passed;
-            if (any) run_top = row;
-        }
-        if (!any) return false;
-        // The rest of the centre's column, down the image (a column is contiguous).
-        const BeamReturn* column = columnOf(a.cols[a.ncols / 2]);
-        for (; row >= a.row0; --row)
-        {
-            if (beamOf(column[row], a, row) == Beam::Passed)
+            const int block_lo = std::max(a.row0, row - 63);
+            const uint64_t m =
+                passedRows(*layout, column, block_lo, row - block_lo + 1, a.d, margin);
+            // Bits [0, i] of the block are left to walk, from the top.
+            for (int i = row - block_lo; i >= 0;)
             {
-                if (run_top < 0) run_top = row;
+                const uint64_t below = i == 63 ? ~uint64_t{0} : (uint64_t{1} << (i + 1)) - 1;
+                const uint64_t next = (run_top >= 0 ? ~m : m) & below;  // where the run ends
+                if (next == 0) break;                                   // or starts
+                const int j = highestBit(next);
+                if (run_top >= 0)
+                    endRun(block_lo + j + 1);
+                else
+                    run_top = block_lo + j;
+                i = j - 1;
             }
-            else
-                endRun(row + 1);
+            row = block_lo - 1;
         }
-        endRun(a.row0);
+        if (run_top >= 0) endRun(a.row0);
         return true;
     }
 
@@ -424,13 +467,6 @@ private:
         /** The columns looked along: the centre's, and half_cols on each side (wrapped). */
         int cols[2 * kMaxHalfCols + 1] = {};
         int ncols = 0;
-
-        /** Squared distance to the axis along the middle of `row`. */
-        [[nodiscard]] double dist2(const RangeImageLayout& l, int row) const
-        {
-            const double tan_el = l.tan_min + (row + 0.5) * l.tan_res;
-            return d * d * (1.0 + tan_el * tan_el);
-        }
     };
 
     [[nodiscard]] bool axisOf(int32_t lo, int32_t hi, Axis& a) const
@@ -701,9 +737,9 @@ private:
     {
         if (ret.range_cm == BeamReturn::kNone) return Beam::None;
         const double r = ret.range();
-        const double dist2 = a.dist2(*layout, row);
-        const double beyond = r - margin, near = r + margin;
-        if (beyond > 0.0 && beyond * beyond > dist2) return Beam::Passed;
+        const double dist2 = rowDist2(*layout, a.d, row);
+        if (passesBeyond(r, dist2, margin)) return Beam::Passed;
+        const double near = r + margin;
         return near * near > dist2 ? Beam::Near : Beam::Front;
     }
 
