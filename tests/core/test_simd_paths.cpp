@@ -2,9 +2,9 @@
 /**
  * @file   test_simd_paths.cpp
  * @brief  The AVX and the scalar paths of the per-point passes (quantization, the see-through
- *         range image, the insertion gate's walk down a pillar's rows) give the same map and the
- *         same classes, bit for bit: on real KITTI scans, and on a synthetic scan with invalid
- *         points.
+ *         range image, the insertion gate's walk down a pillar's rows, the free-space test's
+ *         images) give the same map and the same classes, bit for bit: on real KITTI scans, and
+ *         on a synthetic scan with invalid points.
  */
 #include <gtest/gtest.h>
 
@@ -12,6 +12,7 @@
 #include <limits>
 #include <random>
 
+#include "hif/FreeSpaceTest.h"
 #include "hif/PillarGrid.h"
 #include "hif/detail/Cpu.h"
 #include "hif/io/KittiSequence.h"
@@ -27,19 +28,22 @@ struct AvxGuard
     ~AvxGuard() { detail::setAvxAllowed(true); }
 };
 
-/** The offline configuration's additions on (see-through misses use the range image). */
+/** The offline configuration's additions on (see-through misses use the range image; the
+ *  free-space test its own images). */
 Params offlineParams()
 {
     Params p;
     p.p_empty_init = 0.42;
     p.see_through_range = 35.0;
+    p.free_space_window = 10;
     return p;
 }
 
 struct Result
 {
     PillarGrid grid{GridGeometry(), offlineParams()};
-    std::vector<std::vector<uint8_t>> classes;
+    std::vector<std::vector<uint8_t>> classes;  ///< by the map alone
+    std::vector<std::vector<uint8_t>> tested;   ///< with the free-space test of all the scans
 };
 
 template <typename Scans>
@@ -48,10 +52,14 @@ Result runWith(bool avx, const Scans& scans)
     detail::setAvxAllowed(avx);
     Result r;
     for (const auto& [view, T] : scans) r.grid.insertScan(view, T);
+    FreeSpaceTest test(scans.size());
+    for (const auto& [view, T] : scans) test.add(view, T, r.grid.imageLayout());
     for (const auto& [view, T] : scans)
     {
         r.classes.emplace_back();
         r.grid.classify(view, r.classes.back(), T);
+        r.tested.emplace_back();
+        r.grid.classify(view, r.tested.back(), T, &test);
     }
     return r;
 }
@@ -80,7 +88,11 @@ TEST(SimdPaths, SameMapAndClassesOnRealScans)
     EXPECT_TRUE(avx.grid == scalar.grid) << "the maps differ";
     ASSERT_EQ(avx.classes.size(), scalar.classes.size());
     for (std::size_t i = 0; i < avx.classes.size(); ++i)
+    {
         EXPECT_EQ(avx.classes[i], scalar.classes[i]) << "classes of scan " << i << " differ";
+        EXPECT_EQ(avx.tested[i], scalar.tested[i])
+            << "classes of scan " << i << " with the free-space test differ";
+    }
 }
 
 // Points in LiDAR order with NaNs and far points among them, counts that are not multiples of
@@ -122,4 +134,5 @@ TEST(SimdPaths, SameMapAndClassesOnASyntheticScanWithInvalidPoints)
     const Result b = runWith(false, scans);
     EXPECT_TRUE(a.grid == b.grid);
     EXPECT_EQ(a.classes, b.classes);
+    EXPECT_EQ(a.tested, b.tested);
 }

@@ -27,6 +27,7 @@ void imageCellsScalar(const RangeImageLayout& l, const float* x, const float* y,
     for (std::size_t j = 0; j < n; ++j)
     {
         cells[j] = -1;
+        ranges[j] = tans[j] = 0.0f;  // read, unused, by the next pass's vector code
         const double sx = x[j], sy = y[j], sz = z[j];
         if (!std::isfinite(sx) || !std::isfinite(sy) || !std::isfinite(sz)) continue;
         const double rxy = std::sqrt(sx * sx + sy * sy);
@@ -120,12 +121,102 @@ void imageCells(const RangeImageLayout& l, const float* x, const float* y, const
 
 namespace
 {
+/** BeamReturn::of() for the points [0, n) of ranges and tans whose cell is not -1, into `out`,
+ *  and the largest of their ranges below 655.34 m (what a cell can hold) into `farthest`. */
+void beamReturnsScalar(const int32_t* cells, const float* ranges, const float* tans, std::size_t n,
+                       BeamReturn* out, float& farthest)
+{
+    for (std::size_t j = 0; j < n; ++j)
+    {
+        if (cells[j] < 0) continue;
+        out[j] = BeamReturn::of(ranges[j], tans[j]);
+        if (ranges[j] < 655.34f) farthest = std::max(farthest, ranges[j]);
+    }
+}
+
+/** The centimetres of the points [0, n) of `ranges` (rounded; kNoReturnCm from 655.34 m on),
+ *  into `out`. */
+void rangesCmScalar(const int32_t* cells, const float* ranges, std::size_t n, uint16_t* out)
+{
+    for (std::size_t j = 0; j < n; ++j)
+        if (cells[j] >= 0)
+            out[j] = ranges[j] < 655.34f ? static_cast<uint16_t>(ranges[j] * 100.0f + 0.5f)
+                                         : kNoReturnCm;
+}
+
+#if HIF_X86_AVX
+/** beamReturnsScalar() four points at a time: the same operations, so the same bits. */
+__attribute__((target("avx"))) void beamReturnsAvx(const int32_t* cells, const float* ranges,
+                                                   const float* tans, std::size_t n,
+                                                   BeamReturn* out, float& farthest)
+{
+    static_assert(sizeof(BeamReturn) == 4 && offsetof(BeamReturn, range_cm) == 0,
+                  "a cell's range is the low half of its four bytes");
+    const __m128 hundred = _mm_set1_ps(100.0f), half = _mm_set1_ps(0.5f);
+    const __m128 minus_half = _mm_set1_ps(-0.5f), zero = _mm_setzero_ps();
+    const __m128 none = _mm_set1_ps(static_cast<float>(BeamReturn::kNone));
+    const __m128 steps = _mm_set1_ps(static_cast<float>(1.0 / BeamReturn::kTanStep));
+    const __m128 q_min = _mm_set1_ps(-32767.0f), q_max = _mm_set1_ps(32767.0f);
+    const __m128 reach = _mm_set1_ps(655.34f);
+    const __m128i low16 = _mm_set1_epi32(0xFFFF);
+    __m128 far = _mm_set1_ps(farthest);
+    std::size_t j = 0;
+    for (; j + 4 <= n; j += 4)
+    {
+        const __m128 used = _mm_castsi128_ps(_mm_cmpgt_epi32(
+            _mm_loadu_si128(reinterpret_cast<const __m128i*>(cells + j)), _mm_set1_epi32(-1)));
+        const __m128 r = _mm_loadu_ps(ranges + j);
+        const __m128 cm = _mm_add_ps(_mm_mul_ps(r, hundred), half);
+        const __m128 held = _mm_cmplt_ps(cm, none);  // false for NaN
+        // std::clamp(): for the finite tangents of the cells used, max then min is the same.
+        const __m128 q =
+            _mm_min_ps(_mm_max_ps(_mm_mul_ps(_mm_loadu_ps(tans + j), steps), q_min), q_max);
+        const __m128 rounded =
+            _mm_add_ps(q, _mm_blendv_ps(minus_half, half, _mm_cmpge_ps(q, zero)));
+        const __m128i range_cm = _mm_cvttps_epi32(_mm_blendv_ps(none, cm, held));
+        // No return: all bits set, as BeamReturn{}.
+        const __m128i tan_q = _mm_or_si128(
+            _mm_cvttps_epi32(rounded),
+            _mm_castps_si128(_mm_andnot_ps(held, _mm_castsi128_ps(_mm_set1_epi32(-1)))));
+        const __m128i packed =
+            _mm_or_si128(_mm_and_si128(range_cm, low16), _mm_slli_epi32(tan_q, 16));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(out + j), packed);
+        far = _mm_blendv_ps(far, _mm_max_ps(far, r), _mm_and_ps(used, _mm_cmplt_ps(r, reach)));
+    }
+    alignas(16) float lanes[4];
+    _mm_store_ps(lanes, far);
+    farthest = std::max(std::max(lanes[0], lanes[1]), std::max(lanes[2], lanes[3]));
+    beamReturnsScalar(cells + j, ranges + j, tans + j, n - j, out + j, farthest);
+}
+
+/** rangesCmScalar() four points at a time: the same operations, so the same bits. */
+__attribute__((target("avx"))) void rangesCmAvx(const int32_t* cells, const float* ranges,
+                                                std::size_t n, uint16_t* out)
+{
+    const __m128 hundred = _mm_set1_ps(100.0f), half = _mm_set1_ps(0.5f);
+    const __m128 reach = _mm_set1_ps(655.34f);
+    const __m128 none = _mm_set1_ps(static_cast<float>(kNoReturnCm));
+    std::size_t j = 0;
+    for (; j + 4 <= n; j += 4)
+    {
+        const __m128 r = _mm_loadu_ps(ranges + j);
+        const __m128 cm =
+            _mm_blendv_ps(none, _mm_add_ps(_mm_mul_ps(r, hundred), half), _mm_cmplt_ps(r, reach));
+        const __m128i v = _mm_cvttps_epi32(cm);  // 0 .. 65535: packed to 16 bits as they are
+        _mm_storel_epi64(reinterpret_cast<__m128i*>(out + j), _mm_packus_epi32(v, v));
+    }
+    rangesCmScalar(cells + j, ranges + j, n - j, out + j);
+}
+#endif
+
 /** The nearest return of `pts` in every cell of `img` (layout `l`; row by row, or with
- *  `by_column` column by column): `keep(cell, range, tan_el)` keeps the nearer of the cell's
- *  value and the return; `none` where no return. */
-template <typename T, typename Keep>
+ *  `by_column` column by column): `prepare(cells, ranges, tans, n, values)` turns the points'
+ *  ranges and tangents into the image's values, `keep(cell, value)` keeps the nearer of the
+ *  cell's and the point's; `none` where no return. */
+template <typename T, typename Prepare, typename Keep>
 void fillImage(const RangeImageLayout& l, const PointsView& pts, std::vector<T>& img, T none,
-               Keep keep, std::vector<uint8_t>* blocks = nullptr, bool by_column = false)
+               Prepare prepare, Keep keep, std::vector<uint8_t>* blocks = nullptr,
+               bool by_column = false)
 {
     // Blocks of the flattened image: one may end a row and start the next (at the seam of
     // the azimuth), which the sky test's "a return nearby" does not mind.
@@ -143,16 +234,18 @@ void fillImage(const RangeImageLayout& l, const PointsView& pts, std::vector<T>&
     alignas(64) float ranges[kBlock];
     alignas(64) float tans[kBlock];
     alignas(64) int32_t stored[kBlock];  // by_column: where each cell is stored
+    alignas(64) T values[kBlock];
     int32_t* const at = by_column ? stored : cells;
     for (std::size_t b0 = 0; b0 < pts.size; b0 += kBlock)
     {
         const std::size_t nb = std::min(kBlock, pts.size - b0);
         imageCells(l, pts.x + b0, pts.y + b0, pts.z + b0, nb, cells, ranges, tans,
                    by_column ? stored : nullptr);
+        prepare(cells, ranges, tans, nb, values);
         for (std::size_t j = 0; j < nb; ++j)
             if (cells[j] >= 0)
             {
-                keep(img[static_cast<std::size_t>(at[j])], ranges[j], tans[j]);
+                keep(img[static_cast<std::size_t>(at[j])], values[j]);
                 if (blocks) (*blocks)[static_cast<std::size_t>(cells[j]) / kBlockCols] = 1;
             }
     }
@@ -231,25 +324,40 @@ float buildReturnImage(const RangeImageLayout& l, const PointsView& pts,
     float farthest = 0.0f;
     fillImage(
         l, pts, img, BeamReturn{},
-        [&farthest](BeamReturn& cell, float r, float tan_el)
+        [&farthest](const int32_t* cells, const float* ranges, const float* tans, std::size_t n,
+                    BeamReturn* out)
         {
-            cell.keepNearer(r, tan_el);
-            if (r < 655.34f) farthest = std::max(farthest, r);  // what a cell can hold
+#if HIF_X86_AVX
+            if (useAvx())
+            {
+                beamReturnsAvx(cells, ranges, tans, n, out, farthest);
+                return;
+            }
+#endif
+            beamReturnsScalar(cells, ranges, tans, n, out, farthest);
         },
-        &blocks, true);
+        [](BeamReturn& cell, const BeamReturn& b) { cell.keepNearer(b); }, &blocks, true);
     return farthest;
 }
 
 void buildRangeImageCm(const RangeImageLayout& l, const PointsView& pts, std::vector<uint16_t>& img)
 {
     // Ranges from 655.34 m on read as "no return" (no LiDAR of interest reaches them).
-    fillImage(l, pts, img, kNoReturnCm,
-              [](uint16_t& cell, float r, float /*tan_el*/)
-              {
-                  const uint16_t v =
-                      r < 655.34f ? static_cast<uint16_t>(r * 100.0f + 0.5f) : kNoReturnCm;
-                  cell = std::min(cell, v);
-              });
+    fillImage(
+        l, pts, img, kNoReturnCm,
+        [](const int32_t* cells, const float* ranges, const float* /*tans*/, std::size_t n,
+           uint16_t* out)
+        {
+#if HIF_X86_AVX
+            if (useAvx())
+            {
+                rangesCmAvx(cells, ranges, n, out);
+                return;
+            }
+#endif
+            rangesCmScalar(cells, ranges, n, out);
+        },
+        [](uint16_t& cell, uint16_t v) { cell = std::min(cell, v); });
 }
 
 }  // namespace hif::detail

@@ -102,18 +102,23 @@ struct BeamReturn
                                  : static_cast<float>(range_cm) * 0.01f;
     }
     [[nodiscard]] double tan() const { return tan_q * kTanStep; }
-    /** Keeps a return at `range` metres with elevation tangent `tan_el` when it is nearer
-     *  than the cell's. */
-    void keepNearer(float range, float tan_el)
+    /** A return at `range` metres with elevation tangent `tan_el`, rounded (none from
+     *  655.35 m on, nor for a NaN range). */
+    static BeamReturn of(float range, float tan_el)
     {
-        // Rounded to centimetres: truncating x + 0.5 (>= 0) is below an integer exactly when
-        // x + 0.5 is, so the comparison needs no conversion.
+        BeamReturn b;
         const float cm = range * 100.0f + 0.5f;
-        if (!(cm < static_cast<float>(range_cm))) return;  // also beyond 655.34 m, and NaN
-        range_cm = static_cast<uint16_t>(cm);
+        if (!(cm < static_cast<float>(kNone))) return b;  // also NaN
+        b.range_cm = static_cast<uint16_t>(cm);
         const float q =
             std::clamp(tan_el * static_cast<float>(1.0 / kTanStep), -32767.0f, 32767.0f);
-        tan_q = static_cast<int16_t>(q + (q >= 0.0f ? 0.5f : -0.5f));  // rounded
+        b.tan_q = static_cast<int16_t>(q + (q >= 0.0f ? 0.5f : -0.5f));  // rounded
+        return b;
+    }
+    /** Keeps `b` (of()) when it is nearer than the cell's return. */
+    void keepNearer(const BeamReturn& b)
+    {
+        if (b.range_cm < range_cm) *this = b;
     }
 };
 
