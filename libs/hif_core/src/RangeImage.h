@@ -145,6 +145,17 @@ inline bool passesBeyond(double r, double dist2, double margin)
 uint64_t passedRows(const RangeImageLayout& l, const BeamReturn* column, int row_lo, int n,
                     double d, double margin);
 
+/** Column `c` of an image of `cols` columns, wrapped around the azimuth (one wrap without a
+ *  division). */
+inline int wrapCol(int c, int cols)
+{
+    if (c >= cols)
+        c -= cols;
+    else if (c < 0)
+        c += cols;
+    return c >= 0 && c < cols ? c : (c % cols + cols) % cols;
+}
+
 /** The index of the highest set bit of `m` (not 0). */
 inline int highestBit(uint64_t m) { return 63 - __builtin_clzll(m); }
 
@@ -320,6 +331,7 @@ struct BeamGate
         out.clear();
         Axis a;
         if (!axisOf(lo, hi, a)) return;
+        if (sky) a.horizon_tan = up.z() != 0.0 ? -(up.x() * a.hx + up.y() * a.hy) / up.z() : 0.0;
         if (core.lo <= lo && core.hi >= hi)
         {
             // An object: any beam through it shows all of it gone, unless one is vetoed; with
@@ -468,7 +480,9 @@ private:
         double d = 0.0;             ///< horizontal distance, metres
         double hx = 0.0, hy = 0.0;  ///< its direction
         int row0 = 0, row1 = 0;     ///< rows of the lowest and highest height
-        double horizon_tan = 0.0;   ///< elevation tangent of the world's horizon here
+        /** Elevation tangent of the world's horizon here: for returnAt()'s sky, found only
+         *  where that is asked (passedCells()). */
+        double horizon_tan = 0.0;
         /** The columns looked along: the centre's, and half_cols on each side (wrapped). */
         int cols[2 * kMaxHalfCols + 1] = {};
         int ncols = 0;
@@ -483,7 +497,6 @@ private:
         if (a.d == 0.0) return false;
         a.hx = p.x() / a.d;
         a.hy = p.y() / a.d;
-        a.horizon_tan = up.z() != 0.0 ? -(up.x() * a.hx + up.y() * a.hy) / up.z() : 0.0;
         a.row0 = imageRow(l, std::max(p.z() / a.d, l.tan_min));
         a.row1 = imageRow(l, std::min(hi_z / a.d, l.tan_max - 1e-12));
         if (a.row0 < 0 || a.row1 < 0) return false;
@@ -573,7 +586,7 @@ private:
             !returned_blocks[b > 0 ? b - 1 : last])
             return ret;
         for (int dc = 1; dc <= kBlockCols; ++dc)
-            for (const int c : {(col + dc) % l.cols, (col - dc + l.cols) % l.cols})
+            for (const int c : {wrapCol(col + dc, l.cols), wrapCol(col - dc, l.cols)})
                 if (cellAt(row, c).range_cm != BeamReturn::kNone)
                 {
                     BeamReturn far = cellAt(row, c);
