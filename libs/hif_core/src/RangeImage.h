@@ -288,7 +288,7 @@ struct BeamGate
         }
         if (run_top < 0) return false;
         // The rest of the centre's column, down the image (a column is contiguous): each run
-        // of rows that passed, from its top row to the row under its bottom.
+        // of rows that passed goes to `passed` (the heights its rows cross, rowsCells()).
         const BeamReturn* column = columnOf(a.cols[a.ncols / 2]);
         auto endRun = [&](int bottom)
         {
@@ -301,12 +301,13 @@ struct BeamGate
             const int block_lo = std::max(a.row0, row - 63);
             const uint64_t m =
                 passedRows(*layout, column, block_lo, row - block_lo + 1, a.d, margin);
-            // Bits [0, i] of the block are left to walk, from the top.
+            // Bits [0, i] of the block are left to walk, from the top: the next row where a
+            // run ends (in a run) or starts (between runs).
             for (int i = row - block_lo; i >= 0;)
             {
                 const uint64_t below = i == 63 ? ~uint64_t{0} : (uint64_t{1} << (i + 1)) - 1;
-                const uint64_t next = (run_top >= 0 ? ~m : m) & below;  // where the run ends
-                if (next == 0) break;                                   // or starts
+                const uint64_t next = (run_top >= 0 ? ~m : m) & below;
+                if (next == 0) break;
                 const int j = highestBit(next);
                 if (run_top >= 0)
                     endRun(block_lo + j + 1);
