@@ -219,28 +219,26 @@ bool alongBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& m
     return sides[0] * sides[1] == -1;
 }
 
-/** Whether world point `p` lies on a surface that faces the beams of scan `own` (the scan it
- *  was seen in): in `own`'s image, the nearest returns beside it in its row (within two
- *  columns) and above and below it in its column (within one and a half beam spacings) that
- *  lie on its surface (within the margin of it; in the row and in the column, at least one
- *  does) lie within the margin's share for range noise and pose error (half its base) of its
- *  range. A beam a fraction of a cell off the point's direction then returns where one toward
+/** Whether the world point in `cell` of scan `own`'s image (the scan it was seen in) lies on
+ *  a surface that faces the beams of `own`: in `own`'s image, the nearest returns beside it in its
+ * row (within two columns) and above and below it in its column (within one and a half beam
+ * spacings) that lie on its surface (within the margin of it; in the row and in the column, at
+ * least one does) lie within the margin's share for range noise and pose error (half its base) of
+ * its range. A beam a fraction of a cell off the point's direction then returns where one toward
  *  the point would: a walker, a car's back. On a surface met at grazing incidence (a facade
  *  along the street, a windscreen) or in foliage, neighbouring beams return farther apart;
  *  returns beyond the margin are another surface (the point lies on an edge). The ground seen
  *  by one ring returns its row at one range, but the next ring lands beyond the margin: no
  *  surface in the column. */
-bool facesBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& margin)
+bool facesBeams(const Judge& own, const ImageCell& cell, const RangeMargin& margin)
 {
-    const auto cell = cellOf(own, p);
-    if (!cell) return false;
     const int cols = own.layout->cols;
-    const double m = margin.at(cell->d);
+    const double m = margin.at(cell.d);
     bool in_row = false, in_column = false;
     // Whether the return at `f` leaves the surface facing the beams; `on` if it lies on it.
     auto check = [&](float f, bool& on)
     {
-        const double off = std::abs(static_cast<double>(f) - cell->d);
+        const double off = std::abs(static_cast<double>(f) - cell.d);
         if (!(off <= m)) return true;  // another surface, or none
         on = true;
         return off <= 0.5 * margin.base;
@@ -249,12 +247,19 @@ bool facesBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& m
     {
         float f = std::numeric_limits<float>::infinity();
         for (int k = 1; k <= 2 && !std::isfinite(f); ++k)
-            f = own.at(cell->r, ((cell->c + dir * k) % cols + cols) % cols);
+            f = own.at(cell.r, ((cell.c + dir * k) % cols + cols) % cols);
         if (!check(f, in_row)) return false;
-        nextInColumn(own, cell->r, cell->c, dir, f);
+        nextInColumn(own, cell.r, cell.c, dir, f);
         if (!check(f, in_column)) return false;
     }
     return in_row && in_column;
+}
+
+/** facesBeams() for world point `p`, in its cell of `own`'s image (false outside it). */
+bool facesBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& margin)
+{
+    const auto cell = cellOf(own, p);
+    return cell && facesBeams(own, *cell, margin);
 }
 
 /** Returns of one column of scan `own`'s image placed along the azimuth of world point `p`,
@@ -323,7 +328,7 @@ bool standsAboveGround(const Judge& own, const Eigen::Vector3d& p, const RangeMa
     float up = 0.0f;
     if (nextInColumn(own, cell->r, cell->c, 1, up) < 0 ||
         !(std::abs(static_cast<double>(up) - cell->d) <= margin.at(cell->d)) ||
-        !facesBeams(own, p, margin))
+        !facesBeams(own, *cell, margin))
         return false;
     float f1 = 0.0f, f2 = 0.0f;
     const int r1 = nextInColumn(own, cell->r, cell->c, -1, f1);
