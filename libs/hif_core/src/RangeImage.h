@@ -103,7 +103,7 @@ struct BeamReturn
     }
     [[nodiscard]] double tan() const { return tan_q * kTanStep; }
     /** A return at `range` metres with elevation tangent `tan_el`, rounded (none from
-     *  655.35 m on, nor for a NaN range). */
+     *  655.345 m on, nor for a NaN range). */
     static BeamReturn of(float range, float tan_el)
     {
         BeamReturn b;
@@ -115,7 +115,9 @@ struct BeamReturn
         b.tan_q = static_cast<int16_t>(q + (q >= 0.0f ? 0.5f : -0.5f));  // rounded
         return b;
     }
-    /** Keeps `b` (of()) when it is nearer than the cell's return. */
+    /** Keeps `b` (of()) when it is nearer than the cell's return. Its centimetres are
+     *  x + 0.5 truncated (x >= 0), which is below an integer exactly when x + 0.5 is: the
+     *  nearer of two returns rounded is the rounding of the nearer. */
     void keepNearer(const BeamReturn& b)
     {
         if (b.range_cm < range_cm) *this = b;
