@@ -247,7 +247,7 @@ bool facesBeams(const Judge& own, const ImageCell& cell, const RangeMargin& marg
     {
         float f = std::numeric_limits<float>::infinity();
         for (int k = 1; k <= 2 && !std::isfinite(f); ++k)
-            f = own.at(cell.r, ((cell.c + dir * k) % cols + cols) % cols);
+            f = own.at(cell.r, wrapCol(cell.c + dir * k, cols));
         if (!check(f, in_row)) return false;
         nextInColumn(own, cell.r, cell.c, dir, f);
         if (!check(f, in_column)) return false;

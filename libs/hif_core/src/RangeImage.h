@@ -646,7 +646,7 @@ private:
         for (int r = from.row + dir; dir > 0 ? r <= last : r >= last; r += dir)
             for (const int dc : {0, -1, 1})
             {
-                const Found f = at(r, (from.col + dc + l.cols) % l.cols);
+                const Found f = at(r, wrapCol(from.col + dc, l.cols));
                 if (f.found) return f;
             }
         return {};
