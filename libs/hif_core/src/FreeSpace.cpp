@@ -907,6 +907,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     {
         std::size_t p;
         bool seen_empty;
+        int8_t lowest_hidden;  ///< lowestHidden(p) where it was asked already, else -1
     };
     std::vector<Small> small;
     // What the map found dynamic of a pillar, or the test shows gone, is part of a mover, and so
@@ -937,14 +938,15 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         bool any_dynamic = false;
         for (uint32_t k = scan.offsets[p]; k < scan.offsets[p + 1] && !any_dynamic; ++k)
             any_dynamic = is_dynamic[scan.index[k]] != 0;
-        bool hidden = any_dynamic && lowestHidden(p);
+        bool hidden = any_dynamic && lowestHidden(p);  // kept for the small ones (below)
         auto found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance, hidden);
         // Too little clear of the lowest return for an object, but enough with it where it
         // stands on a face above the ground: a car 24 m away met by two rings of a 16-beam
         // LiDAR, 0.4 and 1.2 m above the road. Asked only where it can make the object.
         // (groundHidden() asked here too removed static points, vegetation and fences, and few
         // moving ones: 03 at 16 rings SA -0.06.)
-        if (!found.object && !hidden && !tested.empty() && found.from_lowest && lowestOnFace(p))
+        if (!found.object && !any_dynamic && !tested.empty() && found.from_lowest &&
+            lowestOnFace(p))
         {
             hidden = true;
             found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance, true);
@@ -964,7 +966,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             bool seen_empty = false;
             for (uint32_t k = scan.offsets[p]; k < scan.offsets[p + 1] && !seen_empty; ++k)
                 seen_empty = is_dynamic[scan.index[k]] != 0 && scan.seen_empty[k] != 0;
-            small.push_back({p, seen_empty});
+            small.push_back({p, seen_empty, static_cast<int8_t>(any_dynamic ? hidden : -1)});
         }
         if (mover)
         {
@@ -1000,8 +1002,10 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // surface along the beams (alongBeams(), seen in the scan's own image) is not judged.
     auto groundUpVerdict = [&](uint32_t k)
     { return alongBeamsAt(k) ? Verdict::Unjudged : verdict(k); };
-    for (const auto& [p, seen_empty] : small)
+    for (const auto& [p, seen_empty, lowest_hidden] : small)
     {
+        auto hiddenBelow = [&, p = p, known = lowest_hidden]
+        { return known >= 0 ? known == 1 : lowestHidden(p); };
         if (!seen_empty && !inOrNextToGone(unpackKey(scan.keys[p])))
         {
             // Not next to a mover, but new: every entry clear of its ground held static by this
@@ -1024,11 +1028,11 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             if (!fresh || !reachesShare(tested, prm.free_space_fraction, groundUpVerdict)) continue;
             // Its lowest return is part of it where the scan could not see below it (the ground
             // out of sight: a car behind a fence, its lowest ring the pillar's lowest return).
-            mark(p, lowestHidden(p) ? groundBelowLowest(p) : found.low);
+            mark(p, hiddenBelow() ? groundBelowLowest(p) : found.low);
             continue;
         }
         auto found =
-            object.entries(scan, p, pts, is_dynamic, tested, object.clearance, lowestHidden(p));
+            object.entries(scan, p, pts, is_dynamic, tested, object.clearance, hiddenBelow());
         bool share = false;
         if (!tested.empty())
             share = reachesShare(tested, prm.free_space_fraction, verdict);
