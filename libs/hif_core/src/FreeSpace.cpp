@@ -109,7 +109,7 @@ Look look(const Judge& j, const ImageCell& cell, const RangeMargin& margin,
     float e = own;
     bool near = false;
     int best = std::numeric_limits<int>::max();
-    const int cols[3] = {c > 0 ? c - 1 : l.cols - 1, c, c + 1 < l.cols ? c + 1 : 0};
+    const int cols[3] = {wrapCol(c - 1, l.cols), c, wrapCol(c + 1, l.cols)};
     for (int dr = -1; dr <= 1 && !(near && std::isfinite(own)); ++dr)
     {
         const int rr = r + dr;
@@ -176,7 +176,7 @@ float columnReturn(const Judge& j, int r, int c)
     const int cols = j.layout->cols;
     const float f = j.at(r, c);
     if (std::isfinite(f)) return f;
-    return std::min(j.at(r, c + 1 < cols ? c + 1 : 0), j.at(r, c > 0 ? c - 1 : cols - 1));
+    return std::min(j.at(r, wrapCol(c + 1, cols)), j.at(r, wrapCol(c - 1, cols)));
 }
 
 /** The next beam's return in column `col` of judge `j`'s image from `row`, up (`dir` 1) or down
@@ -220,16 +220,16 @@ bool alongBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& m
 }
 
 /** Whether the world point in `cell` of scan `own`'s image (the scan it was seen in) lies on
- *  a surface that faces the beams of `own`: in `own`'s image, the nearest returns beside it in its
- * row (within two columns) and above and below it in its column (within one and a half beam
- * spacings) that lie on its surface (within the margin of it; in the row and in the column, at
- * least one does) lie within the margin's share for range noise and pose error (half its base) of
- * its range. A beam a fraction of a cell off the point's direction then returns where one toward
- *  the point would: a walker, a car's back. On a surface met at grazing incidence (a facade
- *  along the street, a windscreen) or in foliage, neighbouring beams return farther apart;
- *  returns beyond the margin are another surface (the point lies on an edge). The ground seen
- *  by one ring returns its row at one range, but the next ring lands beyond the margin: no
- *  surface in the column. */
+ *  a surface that faces the beams of `own`: in `own`'s image, the nearest returns beside it
+ *  in its row (within two columns) and above and below it in its column (within one and a
+ *  half beam spacings) that lie on its surface (within the margin of it; in the row and in
+ *  the column, at least one does) lie within the margin's share for range noise and pose
+ *  error (half its base) of its range. A beam a fraction of a cell off the point's direction
+ *  then returns where one toward the point would: a walker, a car's back. On a surface met
+ *  at grazing incidence (a facade along the street, a windscreen) or in foliage,
+ *  neighbouring beams return farther apart; returns beyond the margin are another surface
+ *  (the point lies on an edge). The ground seen by one ring returns its row at one range, but
+ *  the next ring lands beyond the margin: no surface in the column. */
 bool facesBeams(const Judge& own, const ImageCell& cell, const RangeMargin& margin)
 {
     const int cols = own.layout->cols;
@@ -907,7 +907,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     {
         std::size_t p;
         bool seen_empty;
-        int8_t lowest_hidden;  ///< lowestHidden(p) where it was asked already, else -1
+        std::optional<bool> lowest_hidden;  ///< lowestHidden(p), where it was asked already
     };
     std::vector<Small> small;
     // What the map found dynamic of a pillar, or the test shows gone, is part of a mover, and so
@@ -966,7 +966,8 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             bool seen_empty = false;
             for (uint32_t k = scan.offsets[p]; k < scan.offsets[p + 1] && !seen_empty; ++k)
                 seen_empty = is_dynamic[scan.index[k]] != 0 && scan.seen_empty[k] != 0;
-            small.push_back({p, seen_empty, static_cast<int8_t>(any_dynamic ? hidden : -1)});
+            small.push_back(
+                {p, seen_empty, any_dynamic ? std::optional<bool>(hidden) : std::nullopt});
         }
         if (mover)
         {
@@ -1005,7 +1006,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     for (const auto& [p, seen_empty, lowest_hidden] : small)
     {
         auto hiddenBelow = [&, p = p, known = lowest_hidden]
-        { return known >= 0 ? known == 1 : lowestHidden(p); };
+        { return known ? *known : lowestHidden(p); };
         if (!seen_empty && !inOrNextToGone(unpackKey(scan.keys[p])))
         {
             // Not next to a mover, but new: every entry clear of its ground held static by this

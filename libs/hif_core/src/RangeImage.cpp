@@ -122,7 +122,7 @@ void imageCells(const RangeImageLayout& l, const float* x, const float* y, const
 namespace
 {
 /** BeamReturn::of() for the points [0, n) of ranges and tans whose cell is not -1, into `out`,
- *  and the largest of their ranges below 655.34 m (what a cell can hold) into `farthest`. */
+ *  and `farthest` raised to the largest of their ranges that a cell can hold (kMaxCellRange). */
 void beamReturnsScalar(const int32_t* cells, const float* ranges, const float* tans, std::size_t n,
                        BeamReturn* out, float& farthest)
 {
@@ -130,18 +130,18 @@ void beamReturnsScalar(const int32_t* cells, const float* ranges, const float* t
     {
         if (cells[j] < 0) continue;
         out[j] = BeamReturn::of(ranges[j], tans[j]);
-        if (ranges[j] < 655.34f) farthest = std::max(farthest, ranges[j]);
+        if (ranges[j] < kMaxCellRange) farthest = std::max(farthest, ranges[j]);
     }
 }
 
-/** The centimetres of the points [0, n) of `ranges` (rounded; kNoReturnCm from 655.34 m on),
- *  into `out`. */
+/** The centimetres of the points [0, n) of `ranges` (rounded; kNoReturnCm from kMaxCellRange
+ *  on), into `out`. */
 void rangesCmScalar(const int32_t* cells, const float* ranges, std::size_t n, uint16_t* out)
 {
     for (std::size_t j = 0; j < n; ++j)
         if (cells[j] >= 0)
-            out[j] = ranges[j] < 655.34f ? static_cast<uint16_t>(ranges[j] * 100.0f + 0.5f)
-                                         : kNoReturnCm;
+            out[j] = ranges[j] < kMaxCellRange ? static_cast<uint16_t>(ranges[j] * 100.0f + 0.5f)
+                                               : kNoReturnCm;
 }
 
 #if HIF_X86_AVX
@@ -157,7 +157,7 @@ __attribute__((target("avx"))) void beamReturnsAvx(const int32_t* cells, const f
     const __m128 none = _mm_set1_ps(static_cast<float>(BeamReturn::kNone));
     const __m128 steps = _mm_set1_ps(static_cast<float>(1.0 / BeamReturn::kTanStep));
     const __m128 q_min = _mm_set1_ps(-32767.0f), q_max = _mm_set1_ps(32767.0f);
-    const __m128 reach = _mm_set1_ps(655.34f);
+    const __m128 reach = _mm_set1_ps(kMaxCellRange);
     const __m128i low16 = _mm_set1_epi32(0xFFFF);
     __m128 far = _mm_set1_ps(farthest);
     std::size_t j = 0;
@@ -194,7 +194,7 @@ __attribute__((target("avx"))) void rangesCmAvx(const int32_t* cells, const floa
                                                 std::size_t n, uint16_t* out)
 {
     const __m128 hundred = _mm_set1_ps(100.0f), half = _mm_set1_ps(0.5f);
-    const __m128 reach = _mm_set1_ps(655.34f);
+    const __m128 reach = _mm_set1_ps(kMaxCellRange);
     const __m128 none = _mm_set1_ps(static_cast<float>(kNoReturnCm));
     std::size_t j = 0;
     for (; j + 4 <= n; j += 4)
@@ -277,7 +277,7 @@ __attribute__((target("avx"))) uint64_t passedRowsAvx(const RangeImageLayout& l,
     static_assert(sizeof(BeamReturn) == 4 && offsetof(BeamReturn, range_cm) == 0,
                   "a cell's range is the low half of its four bytes");
     const __m128i low16 = _mm_set1_epi32(0xFFFF);
-    const __m128 cm = _mm_set1_ps(0.01f);
+    const __m128 metres_per_cm = _mm_set1_ps(0.01f);
     const __m256d dd = _mm256_set1_pd(d * d), one = _mm256_set1_pd(1.0);
     const __m256d half = _mm256_set1_pd(0.5), four = _mm256_set1_pd(4.0);
     const __m256d tan_min = _mm256_set1_pd(l.tan_min), tan_res = _mm256_set1_pd(l.tan_res);
@@ -291,7 +291,7 @@ __attribute__((target("avx"))) uint64_t passedRowsAvx(const RangeImageLayout& l,
         const __m128i range_cm = _mm_and_si128(raw, low16);
         const __m128i none = _mm_cmpeq_epi32(range_cm, low16);
         // BeamReturn::range(), then rowDist2() and passesBeyond().
-        const __m256d r = _mm256_cvtps_pd(_mm_mul_ps(_mm_cvtepi32_ps(range_cm), cm));
+        const __m256d r = _mm256_cvtps_pd(_mm_mul_ps(_mm_cvtepi32_ps(range_cm), metres_per_cm));
         const __m256d tan_el =
             _mm256_add_pd(tan_min, _mm256_mul_pd(_mm256_add_pd(rows, half), tan_res));
         const __m256d dist2 = _mm256_mul_pd(dd, _mm256_add_pd(one, _mm256_mul_pd(tan_el, tan_el)));

@@ -83,6 +83,10 @@ struct IntervalWidths
     }
 };
 
+/** The farthest range a range image's cell holds, metres: farther returns are kept as none
+ *  (its centimetres would reach the "no return" value). */
+constexpr float kMaxCellRange = 655.34f;
+
 /** One cell of a scan's range image for insertion: the nearest return in it, with the
  *  tangent of its elevation (sensor frame), which places its beam more finely than the cell's
  *  row does. Four bytes, as a float range was: centimetres (up to 655.34 m) and the tangent
@@ -508,7 +512,7 @@ private:
         for (int dc = -half_cols; dc <= half_cols; ++dc)
         {
             const int c = col + dc;  // wrapped around the azimuth
-            a.cols[a.ncols++] = c < 0 ? c + l.cols : (c >= l.cols ? c - l.cols : c);
+            a.cols[a.ncols++] = wrapCol(c, l.cols);
         }
         return true;
     }
