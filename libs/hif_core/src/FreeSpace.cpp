@@ -819,15 +819,16 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             return Verdict::Gone;
         // A surface that moved along the beams, where the judges lie on one side of the scan in
         // time only (online, the past; offline, the first and the last scan), so that the two
-        // rules above may have too few judges (none the first scan of a run with a past has
-        // two): walking out from the nearest judge in time, the first whose beam toward the
-        // point returned did so in front of it by more than the margin, at a place `q` (on the
-        // line of sight to the point) that the classified scan's own beams see through
-        // (look(): returned beyond it, none near it) and that the map does not hold static.
-        // What hid the point there has left, and was no part of the static scene: a car driving
-        // away, whose back the scan before saw a step nearer, where the road beyond is now seen
-        // (mirrored in time, one coming nearer). What a static thing hides (a pole, a parked
-        // car, a hedge) the map holds static at `q`, wherever the scan's beams pass beside it.
+        // rules above may have too few of them (the second scan of an online run has one):
+        // walking out from the nearest judge in time, the first whose beam toward the point
+        // returned did so in front of it by more than the margin, at a place `q` (on the line
+        // of sight to the point) that the classified scan's own beams see through (look():
+        // returned beyond it, none near it) and that the map does not hold static. What hid the
+        // point there has left, and was no part of the static scene: a car driving away, whose
+        // back the scan before saw a step nearer, where the scan's beams now pass on to its back
+        // farther away (mirrored in time, one coming nearer). What a static thing hides (a pole,
+        // a parked car, a hedge) the map holds static at `q`, wherever the scan's beams pass
+        // beside it.
         auto vacated = [&](std::size_t count, auto judgeAt)
         {
             return walkOut(count, judgeAt,
