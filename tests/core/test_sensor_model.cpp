@@ -207,3 +207,40 @@ TEST(MissNeedsBeam, PEmptyFallsOnlyWhenABeamPassedThroughThePillar)
                     kept + 5.0f * static_cast<float>(std::log((1 - p.alpha) / (1 - p.beta))))
         << "lowered by each of the 5 scans that saw through it (Eq. 8)";
 }
+
+// A spinning LiDAR samples a static surface at the same heights scan after scan, so offline
+// (p_empty_init 0.42) a height seen once is dynamic until a second sighting. A non-repetitive
+// sensor (a model without rings) samples it at new heights in every scan: there a height seen
+// once is no sign that it moved, and a new pillar starts from 0.5 (never lower, never raised
+// above p_empty_init).
+TEST(SensorModel, WithoutRingsAHeightSeenOnceIsNoSignOfMotion)
+{
+    Params p;
+    p.p_empty_init = 0.42;
+    p.sensor_from_scans = false;  // the models below are given
+    const SensorModel rosette = SensorModel::fromPattern(-35.0, 35.0, 0.27, 70.0);
+    const SensorModel rings =
+        SensorModel::fromBeams({-15.0, -13.0, -11.0, -9.0, -7.0, -5.0, -3.0, -1.0, 1.0, 3.0, 5.0,
+                                7.0, 9.0, 11.0, 13.0, 15.0},
+                               0.2);
+    const std::vector<float> x{10.5f, 10.5f}, y{0.5f, 0.5f}, z{-1.7f, -0.7f};
+    auto seenOnce = [&](const SensorModel& m, double p_empty_init)
+    {
+        Params q = p;
+        q.p_empty_init = p_empty_init;
+        PillarGrid grid(GridGeometry(), q);
+        grid.setSensorModel(m);
+        grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+        return grid;
+    };
+    const PillarGrid without = seenOnce(rosette, 0.42), with = seenOnce(rings, 0.42);
+    EXPECT_DOUBLE_EQ(without.pEmptyInit(), 0.5);
+    EXPECT_DOUBLE_EQ(with.pEmptyInit(), 0.42);
+    EXPECT_TRUE(without.isStatic(10.5, 0.5, -0.7));
+    EXPECT_FALSE(with.isStatic(10.5, 0.5, -0.7));
+    EXPECT_DOUBLE_EQ(without.staticProbability(50.5, 50.5, 0.0), 0.5);  // never observed
+    EXPECT_DOUBLE_EQ(with.staticProbability(50.5, 50.5, 0.0), 0.42);
+    EXPECT_DOUBLE_EQ(seenOnce(rosette, 0.6).pEmptyInit(), 0.6);
+    PillarGrid none(GridGeometry(), p);  // no model: p_empty_init as given
+    EXPECT_DOUBLE_EQ(none.pEmptyInit(), 0.42);
+}

@@ -11,6 +11,7 @@
 #include <mrpt/obs/CObservationPointCloud.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <future>
 #include <sstream>
@@ -68,17 +69,23 @@ const std::vector<std::string> kOutputNames{
     "summary.json", "map.hifmap",  "static_map.ply", "static_map.pcd", "removed.ply",
     "removed.pcd",  "predictions", "map.png",        "map.3Dscene",    "classes.ply"};
 
-/** The sensor model's line of the log; for a sensor without rings, also how far to trust the
- *  result (it keeps far fewer static points than with a spinning LiDAR). */
-void describeSensor(const hif::SensorModel& m, const std::string& source, std::ostream& log)
+/** The line of the log for `grid`'s sensor model (it has one); for a sensor without rings,
+ *  also the prior that follows from it and how far to trust the result. */
+void describeSensor(const hif::PillarGrid& grid, const std::string& source, std::ostream& log)
 {
+    const hif::SensorModel& m = *grid.sensorModel();
     log << Clean::kTag << " sensor : " << m.describe() << " (" << source << ")\n";
-    if (!m.hasRings())
-        log << Clean::kTag
-            << " note   : with a sensor without rings, hif removes far more static points than "
-               "with a spinning LiDAR (doc/sensors.md, \"What does not work well yet\"): check "
-               "removed.* before using the static map, or keep far more of them, and fewer "
-               "movers removed, with p_empty_init=0.5\n";
+    if (m.hasRings()) return;
+    char prior[128];
+    std::snprintf(prior, sizeof prior, "new pillars start from p_empty %.2f (p_empty_init %.2f)",
+                  grid.pEmptyInit(), grid.params().p_empty_init);
+    log << Clean::kTag
+        << " note   : a sensor without rings samples a surface at new heights in every scan, so "
+           "a height seen once is no sign that it moved: "
+        << prior
+        << ". It removes fewer movers and more static points than a spinning LiDAR "
+           "(doc/sensors.md, \"What does not work well yet\"): check removed.* before using "
+           "the static map\n";
 }
 
 /** Checks the command line, opens the input, creates the maps; refuses to replace earlier
@@ -177,8 +184,8 @@ void printHeader(const Run& run, std::ostream& log)
                        : "offline (all scans inserted, then every point classified)")
         << "\n"
         << Clean::kTag << " output : " << run.out_dir << "\n";
-    if (const auto& m = run.hif_map->grid().sensorModel())
-        describeSensor(*m, "given in the config", log);
+    if (run.hif_map->grid().sensorModel())
+        describeSensor(run.hif_map->grid(), "given in the config", log);
     for (const std::string& w : run.source->warnings())
         log << Clean::kTag << " warning: " << w << "\n";
 }
@@ -223,8 +230,7 @@ void reportSensor(Run& run, std::size_t k, std::ostream& log)
     if (st.sensor_estimated)
     {
         r.estimated_from_scan = k;
-        describeSensor(*run.hif_map->grid().sensorModel(),
-                       "estimated from scan " + std::to_string(k), log);
+        describeSensor(run.hif_map->grid(), "estimated from scan " + std::to_string(k), log);
     }
     if (st.sensor_checked) ++r.checks;
     if (st.sensor_contradiction.empty()) return;

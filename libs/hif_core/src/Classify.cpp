@@ -36,7 +36,7 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
     constexpr uint8_t kUnset = 2;
     is_dynamic.assign(pts.size, kUnset);
 
-    const bool prior_static = isStaticLogOdds(logit(params_.p_empty_init));
+    const bool prior_static = isStaticLogOdds(logit(pEmptyInit()));
     const bool free_space_test =
         free_space && !free_space->empty() && params_.free_space_window > 0;
     // ScanBuckets::seen_once: at most p_empty_init and one hit; ScanBuckets::seen_empty: less
@@ -47,7 +47,7 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
         scan.floors.resize(scan.pillarCount());
         scan.seen_once.resize(scan.cells.size());
         scan.seen_empty.resize(scan.cells.size());
-        const detail::LogOddsModel model = detail::LogOddsModel::fromParams(params_);
+        const detail::LogOddsModel model = detail::LogOddsModel::fromParams(params_, pEmptyInit());
         seen_once = model.empty_init + model.hit + 1e-4f;
         empty_init = model.empty_init;
     }

@@ -72,6 +72,13 @@ void PillarGrid::setSensorModel(std::optional<SensorModel> model)
     scans_since_check_ = kSensorCheckInterval - 1;  // given: the next scan is checked
 }
 
+double PillarGrid::pEmptyInit() const
+{
+    constexpr double kNeutral = 0.5;  // no evidence either way
+    if (sensor_ && !sensor_->hasRings()) return std::max(params_.p_empty_init, kNeutral);
+    return params_.p_empty_init;
+}
+
 double PillarGrid::beamGapSlope(double tan_el) const
 {
     if (params_.beam_spacing_deg <= 0.0) return 0.0;
@@ -121,7 +128,7 @@ double PillarGrid::logOddsAt(double x, double y, double z) const
     const auto idx = geometry_.pillarOf(x, y);
     const auto zc = geometry_.heightCellOf(z);
     const Pillar* p = idx && zc ? findPillar(*idx) : nullptr;
-    if (!p) return logit(params_.p_empty_init);
+    if (!p) return logit(pEmptyInit());
     if (const Interval* iv = findInterval(*p, *zc)) return iv->logodds;
     return p->logodds_empty;
 }
@@ -130,9 +137,9 @@ double PillarGrid::staticProbability(double x, double y, double z) const
 {
     const auto idx = geometry_.pillarOf(x, y);
     const auto zc = geometry_.heightCellOf(z);
-    if (!idx || !zc) return params_.p_empty_init;
+    if (!idx || !zc) return pEmptyInit();
     const Pillar* p = findPillar(*idx);
-    if (!p) return params_.p_empty_init;
+    if (!p) return pEmptyInit();
     if (const Interval* iv = findInterval(*p, *zc)) return logistic(iv->logodds);
     return logistic(p->logodds_empty);
 }

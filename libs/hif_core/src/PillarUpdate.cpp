@@ -30,6 +30,13 @@ LogOddsModel LogOddsModel::fromParams(const Params& p)
     return m;
 }
 
+LogOddsModel LogOddsModel::fromParams(const Params& p, double p_empty_init)
+{
+    LogOddsModel m = fromParams(p);
+    m.empty_init = static_cast<float>(logit(p_empty_init));
+    return m;
+}
+
 std::size_t spansFromCells(const int32_t* cells, std::size_t n, int32_t gap_cells,
                            int32_t pad_cells, Span* out)
 {

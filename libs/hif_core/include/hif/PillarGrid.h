@@ -142,6 +142,13 @@ public:
      *  of rings, that of the two beams around it (SensorModel::beamGapSlope()); without a
      *  model, tan(Params::beam_spacing_deg); 0 when off (beam_spacing_deg 0). */
     [[nodiscard]] double beamGapSlope(double tan_el) const;
+    /** p_empty of a new pillar in effect (Eq. 14's prior where nothing is known yet):
+     *  Params::p_empty_init, but not under 0.5 with a sensor model without rings (a
+     *  non-repetitive pattern, a Livox-style rosette). Under 0.5, a height seen once is
+     *  dynamic until a second sighting; a spinning LiDAR samples a static surface at the same
+     *  heights scan after scan, but a non-repetitive one samples it at new heights in every
+     *  scan, so there a height seen once is no sign that something moved (doc/sensors.md). */
+    [[nodiscard]] double pEmptyInit() const;
     /** Scans between two checks of a scan against the sensor model. */
     static constexpr std::size_t kSensorCheckInterval = 50;
 

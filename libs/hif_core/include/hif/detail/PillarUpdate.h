@@ -52,6 +52,8 @@ struct LogOddsModel
     double ground_step = 0.0;
 
     [[nodiscard]] static LogOddsModel fromParams(const Params& p);
+    /** The same with a new pillar's p_empty `p_empty_init` (PillarGrid::pEmptyInit()). */
+    [[nodiscard]] static LogOddsModel fromParams(const Params& p, double p_empty_init);
     [[nodiscard]] float clamp(float l) const { return l < lmin ? lmin : (l > lmax ? lmax : l); }
     /** Whether a miss (Eq. 13, clipped by Eq. 17-18) changes log-odds `l`: not at p_min, so
      *  where it does not, nobody needs to ask whether a beam passed. */
