@@ -93,8 +93,8 @@ void writeSummary(const std::string& file, const SummaryInfo& info,
         sj["vertical_spacing_deg"] = m->vertical_spacing_deg;
         sj["horizontal_resolution_deg"] = m->horizontal_resolution_deg;
         sj["azimuth_coverage_deg"] = m->azimuth_coverage_deg;
-        sj["p_empty_of_a_new_pillar"] =
-            map.grid().pEmptyInit();  // p_empty_init, or 0.5 without rings
+        // p_empty_init, or 0.5 where that is under it for a sensor without rings
+        sj["p_empty_of_a_new_pillar"] = map.grid().pEmptyInit();
         if (info.sensor.estimated_from_scan)
             sj["estimated_from_scan"] = *info.sensor.estimated_from_scan;
         else
