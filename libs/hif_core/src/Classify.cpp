@@ -47,7 +47,7 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
         scan.floors.resize(scan.pillarCount());
         scan.seen_once.resize(scan.cells.size());
         scan.seen_empty.resize(scan.cells.size());
-        const detail::LogOddsModel model = detail::LogOddsModel::fromParams(params_, pEmptyInit());
+        const detail::LogOddsModel model = detail::LogOddsModel::of(*this);
         seen_once = model.empty_init + model.hit + 1e-4f;
         empty_init = model.empty_init;
     }

@@ -835,8 +835,9 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
                            [&](const BeamOffset& o, std::size_t k)
                            {
                                if (o.offset >= -o.margin) return Walk::Lost;
-                               const Judge& j = judges[judgeAt(k)];
-                               const double d = cells[judgeAt(k)].d;
+                               const std::size_t jk = judgeAt(k);
+                               const Judge& j = judges[jk];
+                               const double d = cells[jk].d;
                                const Eigen::Vector3d q = j.t + (p_w - j.t) * ((d + o.offset) / d);
                                if (grid.isStatic(q.x(), q.y(), q.z())) return Walk::Lost;
                                const auto at_q = cellOf(ownJudge(), q);

@@ -6,6 +6,7 @@
 #include "hif/detail/PillarUpdate.h"
 
 #include "RangeImage.h"
+#include "hif/PillarGrid.h"
 
 #include <algorithm>
 #include <cmath>
@@ -30,10 +31,10 @@ LogOddsModel LogOddsModel::fromParams(const Params& p)
     return m;
 }
 
-LogOddsModel LogOddsModel::fromParams(const Params& p, double p_empty_init)
+LogOddsModel LogOddsModel::of(const PillarGrid& grid)
 {
-    LogOddsModel m = fromParams(p);
-    m.empty_init = static_cast<float>(logit(p_empty_init));
+    LogOddsModel m = fromParams(grid.params());
+    m.empty_init = static_cast<float>(logit(grid.pEmptyInit()));
     return m;
 }
 

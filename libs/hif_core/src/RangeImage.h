@@ -809,7 +809,7 @@ inline float seenOnce(const PillarGrid& grid)
 {
     const auto& model = grid.sensorModel();
     if (!model || !model->hasRings()) return -std::numeric_limits<float>::infinity();
-    const LogOddsModel m = LogOddsModel::fromParams(grid.params(), grid.pEmptyInit());
+    const LogOddsModel m = LogOddsModel::of(grid);
     return m.empty_init + m.hit + 1e-4f;
 }
 

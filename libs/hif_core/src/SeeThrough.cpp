@@ -65,7 +65,7 @@ void seeThroughMisses(PillarGrid& grid, const Eigen::Isometry3d& T, const ScanBu
     PillarTable& pillars = GridAccess::pillars(grid);
     const GridGeometry& geo = grid.geometry();
     const Params& prm = grid.params();
-    const LogOddsModel model = LogOddsModel::fromParams(prm, grid.pEmptyInit());
+    const LogOddsModel model = LogOddsModel::of(grid);
 
     // The map's pillars within see_through_range of the sensor that the scan did not hit.
     const double ps = geo.pillar_size;

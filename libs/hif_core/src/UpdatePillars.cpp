@@ -17,7 +17,7 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
     PillarTable& pillars = GridAccess::pillars(grid);
     Workspace& ws = GridAccess::workspace(grid);
     std::vector<Pillar*>& targets = ws.targets;
-    const LogOddsModel model = LogOddsModel::fromParams(grid.params(), grid.pEmptyInit());
+    const LogOddsModel model = LogOddsModel::of(grid);
     const std::size_t cap = grid.params().max_intervals_per_pillar;
     ws.updater.reset(model, cap);
 

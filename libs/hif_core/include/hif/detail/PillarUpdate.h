@@ -15,6 +15,11 @@
 #include "hif/Params.h"
 #include "hif/Pillar.h"
 
+namespace hif
+{
+class PillarGrid;
+}
+
 namespace hif::detail
 {
 /** Height cells [lo, hi) seen occupied in one pillar by one scan (h^t without probability). */
@@ -52,8 +57,9 @@ struct LogOddsModel
     double ground_step = 0.0;
 
     [[nodiscard]] static LogOddsModel fromParams(const Params& p);
-    /** The same with a new pillar's p_empty `p_empty_init` (PillarGrid::pEmptyInit()). */
-    [[nodiscard]] static LogOddsModel fromParams(const Params& p, double p_empty_init);
+    /** The model `grid` updates with: its parameters, a new pillar's p_empty that in effect
+     *  (PillarGrid::pEmptyInit(): it depends on the sensor model too). */
+    [[nodiscard]] static LogOddsModel of(const PillarGrid& grid);
     [[nodiscard]] float clamp(float l) const { return l < lmin ? lmin : (l > lmax ? lmax : l); }
     /** Whether a miss (Eq. 13, clipped by Eq. 17-18) changes log-odds `l`: not at p_min, so
      *  where it does not, nobody needs to ask whether a beam passed. */
