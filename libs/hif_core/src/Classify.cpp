@@ -39,16 +39,18 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
     const bool prior_static = isStaticLogOdds(logit(pEmptyInit()));
     const bool free_space_test =
         free_space && !free_space->empty() && params_.free_space_window > 0;
-    // ScanBuckets::seen_once: at most p_empty_init and one hit; ScanBuckets::seen_empty: less
-    // than p_empty_init (in the update's own floats).
-    float seen_once = 0.0f, empty_init = 0.0f;
+    // ScanBuckets::seen_once and seen_twice: at most p_empty_init and one or two hits;
+    // ScanBuckets::seen_empty: less than p_empty_init (in the update's own floats).
+    float seen_once = 0.0f, seen_twice = 0.0f, empty_init = 0.0f;
     if (free_space_test)
     {
         scan.floors.resize(scan.pillarCount());
         scan.seen_once.resize(scan.cells.size());
+        scan.seen_twice.resize(scan.cells.size());
         scan.seen_empty.resize(scan.cells.size());
         const detail::LogOddsModel model = detail::LogOddsModel::of(*this);
         seen_once = model.empty_init + model.hit + 1e-4f;
+        seen_twice = model.empty_init + 2.0f * model.hit + 1e-4f;
         empty_init = model.empty_init;
     }
     std::atomic<std::size_t> n_static{0};
@@ -64,18 +66,20 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
                               for (uint32_t k = b; k < e; ++k)
                               {
                                   bool stat = prior_static;
-                                  bool once = false, emptied = false;
+                                  bool once = false, twice = false, emptied = false;
                                   if (pil)
                                   {
                                       const Interval* iv = findInterval(*pil, scan.cells[k]);
                                       const float l = iv ? iv->logodds : pil->logodds_empty;
                                       stat = isStaticLogOdds(l);
                                       once = iv && iv->logodds <= seen_once;
+                                      twice = iv && iv->logodds <= seen_twice;
                                       emptied = l < empty_init;
                                   }
                                   if (free_space_test)
                                   {
                                       scan.seen_once[k] = once;
+                                      scan.seen_twice[k] = twice;
                                       scan.seen_empty[k] = emptied;
                                   }
                                   is_dynamic[scan.index[k]] = stat ? 0 : 1;

@@ -485,6 +485,36 @@ struct ObjectTest
     }
 };
 
+/** A return of the classified scan in its own image: its cell and range, metres. */
+struct Sample
+{
+    int r, c;
+    float d;
+};
+
+/** Whether the classified scan's own image shows one surface across two pillars: a sample of
+ *  each (`a`, `b`, each sorted by row) next to each other, within one and a half beam
+ *  spacings in the column (three rows of half a spacing) and two columns in the row (the
+ *  neighbours alongBeams() and facesBeams() read; `cols`, the image's columns, wrap around
+ *  the azimuth), at ranges within `tol` of each other. */
+bool oneSurface(const std::vector<Sample>& a, const std::vector<Sample>& b, int cols, double tol)
+{
+    constexpr int kRows = 3;
+    std::size_t from = 0;  // the first of b's samples within kRows of the current one of a
+    for (const Sample& x : a)
+    {
+        while (from < b.size() && b[from].r < x.r - kRows) ++from;
+        for (std::size_t j = from; j < b.size() && b[j].r <= x.r + kRows; ++j)
+        {
+            const int dc = std::abs(x.c - b[j].c);
+            if (std::min(dc, cols - dc) <= 2 &&
+                std::abs(static_cast<double>(x.d) - static_cast<double>(b[j].d)) <= tol)
+                return true;
+        }
+    }
+    return false;
+}
+
 /** Judges (whose beams returned) that must show a surface moving steadily along the beams
  *  (markSeenThrough()). */
 constexpr std::size_t kSteadyJudges = 3;
@@ -942,6 +972,14 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         std::optional<bool> lowest_hidden;  ///< lowestHidden(p), where it was asked already
     };
     std::vector<Small> small;
+    // Pillars with an object clear of their ground, or a mover's, for carryOn() below.
+    struct ObjectPillar
+    {
+        std::size_t p;
+        int32_t low;  ///< its ground (ObjectTest::Found::low)
+        bool gone;    ///< shown gone here, or found moving by the map
+    };
+    std::vector<ObjectPillar> objects;
     // What the map found dynamic of a pillar, or the test shows gone, is part of a mover, and so
     // is the pillar's lowest return where the scan could not see below it: what hid the ground
     // stands in front of it (groundHidden()), or, with a ringed sensor, the return lies on a
@@ -1006,7 +1044,188 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             const PillarIndex idx = unpackKey(scan.keys[p]);
             gone.emplace_back(idx.m, idx.n);
         }
+        if (found.object || mover) objects.push_back({p, found.low, mover});
     }
+    // A mover's surface carried on across pillars. Pillars with an object are joined where the
+    // scan's own image shows one surface across their boundary (oneSurface(), within the
+    // margin's share for range noise, half its base): a car's side cut into pillars. Where
+    // free_space_fraction of such a surface's points lie in pillars shown gone (or found moving
+    // by the map), the rest moved with them: a rigid body leaves no part of itself behind. The
+    // case is a car crossing the view, online: its side slides along itself, so the scan before
+    // saw the part it still covers occupied, and only its leading part seen through (01's car
+    // 27 m away in scan 1: 175 of its 301 points shown gone, the other 126 held, in the two
+    // pillars it covered in scan 0 too). The rest goes only where the map saw it at most twice
+    // (ScanBuckets::seen_twice: this scan's sighting and one other), as a mover's place is seen
+    // while it passes; what stands still was seen by every scan that could, and a judge's
+    // wrong "free" in one of its pillars (a traffic sign's edge) does not take the rest: the
+    // surface ends at such a pillar, whose points count against the share. Only where the
+    // judges lie on one side of the scan in time (online; offline, the first and last scans):
+    // with judges on both sides, those of the other side see through the part the first saw
+    // occupied. Only with a ringed sensor: one without rings samples a surface at new heights
+    // every scan, so there what stands still is seen once or twice too (the rosette's SA -0.1
+    // to -0.6 with it).
+    const bool one_sided = self_pos == 0 || self_pos == judges.size();
+    auto carryOn = [&]
+    {
+        if (!rings || !one_sided ||
+            std::none_of(objects.begin(), objects.end(),
+                         [](const ObjectPillar& o) { return o.gone; }))
+            return;
+        // Object pillars by key, and their samples clear of the ground (the first and last
+        // point of each entry's run: its ends along the ring), with their points, repeats
+        // included; found when first asked.
+        std::vector<std::pair<std::pair<int64_t, int64_t>, std::size_t>> by_key;
+        by_key.reserve(objects.size());
+        for (std::size_t o = 0; o < objects.size(); ++o)
+        {
+            const PillarIndex idx = unpackKey(scan.keys[objects[o].p]);
+            by_key.push_back({{idx.m, idx.n}, o});
+        }
+        std::sort(by_key.begin(), by_key.end());
+        // The samples' cells, in the layout of the scan's own image (the grid's), from the
+        // points in the sensor frame.
+        const RangeImageLayout& layout = grid.imageLayout();
+        std::vector<std::vector<Sample>> samples(objects.size());
+        std::vector<std::size_t> points(objects.size(), 0);
+        std::vector<uint8_t> sampled(objects.size(), 0), joined(objects.size(), 0);
+        auto sample = [&](std::size_t o)
+        {
+            if (sampled[o]) return;
+            sampled[o] = 1;
+            const ObjectPillar& ob = objects[o];
+            for (uint32_t k = scan.offsets[ob.p]; k < scan.offsets[ob.p + 1]; ++k)
+            {
+                const uint32_t first = scan.index[k];
+                const double x = pts.x[first], y = pts.y[first], z = pts.z[first];
+                if (scan.cells[k] < ob.low + object.clearance ||
+                    x * x + y * y + z * z > object.range2)
+                    continue;
+                const uint32_t last = lastOfRun(first);
+                points[o] += last - first + 1;
+                for (const uint32_t i : {first, last})
+                {
+                    const double sx = pts.x[i], sy = pts.y[i], sz = pts.z[i];
+                    const double rxy = std::sqrt(sx * sx + sy * sy);
+                    const int r = rxy > 0.0 ? imageRow(layout, sz / rxy) : -1;
+                    if (r >= 0)
+                        samples[o].push_back({r, imageCol(layout, pseudoAzimuth(sx, sy)),
+                                              static_cast<float>(std::sqrt(rxy * rxy + sz * sz))});
+                }
+            }
+            std::sort(samples[o].begin(), samples[o].end(),
+                      [](const Sample& x, const Sample& y) { return x.r < y.r; });
+        };
+        // Whether every entry of pillar `ob` clear of its ground was seen twice at most.
+        auto seenTwiceAtMost = [&](const ObjectPillar& ob)
+        {
+            bool any = false;
+            for (uint32_t k = scan.offsets[ob.p]; k < scan.offsets[ob.p + 1]; ++k)
+            {
+                if (scan.cells[k] < ob.low + object.clearance) continue;
+                if (!scan.seen_twice[k]) return false;
+                any = true;
+            }
+            return any;
+        };
+        const int cols = layout.cols;
+        const double tol = 0.5 * margin.base;
+        std::vector<uint8_t> freshness(objects.size(), 2);  // 2: not asked yet
+        auto fresh = [&](std::size_t o)
+        {
+            if (freshness[o] == 2) freshness[o] = seenTwiceAtMost(objects[o]) ? 1 : 0;
+            return freshness[o] == 1;
+        };
+        // The neighbour of pillar u (of `objects`) by (dm, dn), or objects.size() for none.
+        auto neighbour = [&](std::size_t u, int dm, int dn)
+        {
+            const PillarIndex idx = unpackKey(scan.keys[objects[u].p]);
+            const std::pair<int64_t, int64_t> key(int64_t{idx.m} + dm, int64_t{idx.n} + dn);
+            const auto it = std::lower_bound(by_key.begin(), by_key.end(), key,
+                                             [](const auto& e, const std::pair<int64_t, int64_t>& k)
+                                             { return e.first < k; });
+            return it == by_key.end() || it->first != key ? objects.size() : it->second;
+        };
+        // Only a surface that holds a pillar to carry on (not gone, seen twice at most) can
+        // change anything: the pillars shown gone or seen twice at most are first joined by
+        // neighbourhood alone (a surface lies within such a group), and a surface is followed
+        // only from a group that holds both.
+        std::vector<std::size_t> group(objects.size());
+        for (std::size_t o = 0; o < objects.size(); ++o) group[o] = o;
+        auto root = [&](std::size_t o)
+        {
+            while (group[o] != o) o = group[o] = group[group[o]];
+            return o;
+        };
+        for (std::size_t o = 0; o < objects.size(); ++o)
+        {
+            if (!objects[o].gone && !fresh(o)) continue;
+            for (int dm = -1; dm <= 1; ++dm)
+                for (int dn = -1; dn <= 1; ++dn)
+                {
+                    const std::size_t v = neighbour(o, dm, dn);
+                    if (v < objects.size() && v > o && (objects[v].gone || fresh(v)))
+                        group[root(o)] = root(v);
+                }
+        }
+        std::vector<uint8_t> to_carry(objects.size(), 0);  // per group's root
+        for (std::size_t o = 0; o < objects.size(); ++o)
+            if (!objects[o].gone && fresh(o)) to_carry[root(o)] = 1;
+        // The surface through a pillar shown gone, pillar by pillar across the 8 neighbours,
+        // on through the pillars shown gone and those the map saw at most twice; a pillar it
+        // saw more often that the surface reaches ends it there, its points counted with the
+        // surface's (once per surface: `counted_for`).
+        std::vector<std::size_t> surface;
+        std::vector<std::size_t> counted_for(objects.size(), objects.size());
+        for (std::size_t start = 0; start < objects.size(); ++start)
+        {
+            if (!objects[start].gone || joined[start] || !to_carry[root(start)]) continue;
+            surface.assign(1, start);
+            joined[start] = 1;
+            sample(start);
+            std::size_t held_points = 0;  // of the pillars that end the surface
+            for (std::size_t q = 0; q < surface.size(); ++q)
+            {
+                const std::size_t u = surface[q];
+                for (int dm = -1; dm <= 1; ++dm)
+                    for (int dn = -1; dn <= 1; ++dn)
+                    {
+                        const std::size_t v = neighbour(u, dm, dn);
+                        if (v == objects.size() || joined[v]) continue;
+                        const bool goes_on = objects[v].gone || fresh(v);
+                        if (!goes_on && counted_for[v] == start) continue;
+                        sample(v);
+                        if (!oneSurface(samples[u], samples[v], cols, tol)) continue;
+                        if (goes_on)
+                        {
+                            joined[v] = 1;
+                            surface.push_back(v);
+                        }
+                        else
+                        {
+                            counted_for[v] = start;
+                            held_points += points[v];
+                        }
+                    }
+            }
+            std::size_t gone_points = 0, all_points = held_points;
+            for (const std::size_t o : surface)
+            {
+                all_points += points[o];
+                if (objects[o].gone) gone_points += points[o];
+            }
+            if (static_cast<double>(gone_points) <
+                prm.free_space_fraction * static_cast<double>(all_points))
+                continue;
+            for (const std::size_t o : surface)
+            {
+                if (objects[o].gone) continue;
+                mark(objects[o].p, objects[o].low);
+                const PillarIndex idx = unpackKey(scan.keys[objects[o].p]);
+                gone.emplace_back(idx.m, idx.n);
+            }
+        }
+    };
+    carryOn();
     // A mover (shown gone here, or by the map) reaches into the pillars around it with its
     // lowest parts (feet, wheels, bumpers): too little there to make an object of their own,
     // they are tested as part of it. So is what the map kept of it in its own pillar (a pillar

@@ -54,6 +54,9 @@ struct ScanBuckets
      *  in the map has log-odds no more than p_empty_init's and one hit, so that what the map
      *  holds static there rests on one sighting at most: online, on this scan's. */
     std::vector<uint8_t> seen_once;
+    /** Per cell entry (as seen_once): 1 when no more than p_empty_init's and two hits: this
+     *  scan's sighting and one other at most. */
+    std::vector<uint8_t> seen_twice;
     /** Per cell entry (filled by classification for the free-space test): 1 when the map holds
      *  less than p_empty_init there (its interval's log-odds, else the pillar's p_empty): beams
      *  saw the place empty more often than occupied, so what stands there now moved in or is
