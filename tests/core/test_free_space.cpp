@@ -970,16 +970,22 @@ TEST(FreeSpaceTest, TwoScansOfPastShowAVanDrivingAhead) { expectTheVanShownIn(2)
 // that rule (the one judge neither saw through the van's back nor saw it there).
 TEST(FreeSpaceTest, OneScanOfPastShowsAVanDrivingAheadWhereItsBackWas) { expectTheVanShownIn(1); }
 
-// Online, the sensor standing still: a hedge 1.5 m tall, 18 m ahead, there in every scan but
-// the sixth (a gap in foliage), hides a car parked 3 m behind it, which the sixth scan sees for
-// the first time. The scan before saw the hedge in front of the car, and the sixth sees through
-// where the hedge was; but the map holds the hedge static there (five scans saw it), so what hid
-// the car was part of the static scene, and the car stays (with the map not asked, the test
-// removed 114 of its 115 points in that scan).
-TEST(FreeSpaceTest, ACarSeenThroughAGapInAHedgeStays)
+/** A box standing before a sensor at the origin: its corners and what it is, in the scans from
+ *  `from` on, but `gap` (-1: none). */
+struct StandingBox
+{
+    Eigen::Vector3d lo, hi;
+    What what;
+    int from = 0;
+    int gap = -1;
+};
+
+/** `n` scans of a sensor standing at the origin over the 40 degrees on each side of +x: the
+ *  ground, a wall 40 m ahead and `boxes`. */
+std::vector<Scan> standingScans(int n, const std::vector<StandingBox>& boxes)
 {
     std::vector<Scan> scans;
-    for (int i = 0; i < 10; ++i)
+    for (int i = 0; i < n; ++i)
         scans.push_back(rayScan(Eigen::Isometry3d::Identity(), 40.0,
                                 [&](const Eigen::Vector3d& d, double& range)
                                 {
@@ -989,13 +995,25 @@ TEST(FreeSpaceTest, ACarSeenThroughAGapInAHedgeStays)
                                     {
                                         if (s > 1e-6 && s < range) range = s, w = hit;
                                     };
-                                    if (i != 5)
-                                        hitBox(o, d, {17.5, 4.5, kGroundZ},
-                                               {18.5, 7.5, kGroundZ + 1.5}, kHedge, range, take);
-                                    hitBox(o, d, {21.0, 5.5, kGroundZ}, {22.5, 6.5, kGroundZ + 1.0},
-                                           kParked, range, take);
+                                    for (const StandingBox& b : boxes)
+                                        if (i >= b.from && i != b.gap)
+                                            hitBox(o, d, b.lo, b.hi, b.what, range, take);
                                     return w;
                                 }));
+    return scans;
+}
+
+// Online, the sensor standing still: a hedge 1.5 m tall, 18 m ahead, there in every scan but
+// the sixth (a gap in foliage), hides a car parked 3 m behind it, which the sixth scan sees for
+// the first time. The scan before saw the hedge in front of the car, and the sixth sees through
+// where the hedge was; but the map holds the hedge static there (five scans saw it), so what hid
+// the car was part of the static scene, and the car stays (with the map not asked, the test
+// removed 114 of its 115 points in that scan).
+TEST(FreeSpaceTest, ACarSeenThroughAGapInAHedgeStays)
+{
+    const std::vector<Scan> scans =
+        standingScans(10, {{{17.5, 4.5, kGroundZ}, {18.5, 7.5, kGroundZ + 1.5}, kHedge, 0, 5},
+                           {{21.0, 5.5, kGroundZ}, {22.5, 6.5, kGroundZ + 1.0}, kParked}});
     std::vector<WithAndWithout> per_scan;
     onlineWithAndWithout(scans, vanAheadParams(), &per_scan);
     ASSERT_EQ(per_scan.size(), 10u);
@@ -1183,24 +1201,9 @@ TEST(FreeSpaceTest, ACarCrossingTheViewGoesWholeWhereItsSideSlidAlongItself)
 // map saw it.
 TEST(FreeSpaceTest, WhatStoodThereAllAlongStaysBesideWhatArrivedOnTheSameSurface)
 {
-    std::vector<Scan> scans;
-    for (int i = 0; i < 6; ++i)
-        scans.push_back(rayScan(Eigen::Isometry3d::Identity(), 40.0,
-                                [&](const Eigen::Vector3d& d, double& range)
-                                {
-                                    const Eigen::Vector3d o = Eigen::Vector3d::Zero();
-                                    What w = groundWallAndPerson(o, d, 40.0, std::nullopt, range);
-                                    auto take = [&](double s, What hit)
-                                    {
-                                        if (s > 1e-6 && s < range) range = s, w = hit;
-                                    };
-                                    if (i > 0)
-                                        hitBox(o, d, {20.0, -2.0, kGroundZ + 0.3},
-                                               {20.2, 1.0, kGroundZ + 1.8}, kHedge, range, take);
-                                    hitBox(o, d, {20.0, 1.0, kGroundZ + 0.3},
-                                           {20.2, 2.0, kGroundZ + 1.8}, kParked, range, take);
-                                    return w;
-                                }));
+    const std::vector<Scan> scans =
+        standingScans(6, {{{20.0, -2.0, kGroundZ + 0.3}, {20.2, 1.0, kGroundZ + 1.8}, kHedge, 1},
+                          {{20.0, 1.0, kGroundZ + 0.3}, {20.2, 2.0, kGroundZ + 1.8}, kParked}});
     Params prm = vanAheadParams();
     prm.free_space_fraction = 0.4;
     std::vector<WithAndWithout> per_scan;
