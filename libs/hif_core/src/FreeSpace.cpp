@@ -972,7 +972,8 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         std::optional<bool> lowest_hidden;  ///< lowestHidden(p), where it was asked already
     };
     std::vector<Small> small;
-    // Pillars with an object clear of their ground, or a mover's, for carryOn() below.
+    // Pillars with an object clear of their ground, or a mover's, for carryOn() below (kept
+    // only where it runs: carry_on).
     struct ObjectPillar
     {
         std::size_t p;
@@ -990,6 +991,9 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // at the foot of what stands there). Without rings the next return down an image column
     // is no next beam of the same sweep.
     const bool rings = grid.sensorModel() && grid.sensorModel()->hasRings();
+    // carryOn() runs only with a ringed sensor where the judges lie on one side of the scan in
+    // time.
+    const bool carry_on = rings && (self_pos == 0 || self_pos == judges.size());
     auto lowestOf = [&](std::size_t p)
     { return worldOf(scan.index[ObjectTest::lowestEntry(scan, p)]); };
     auto onFace = [&](const Eigen::Vector3d& lowest)
@@ -1044,7 +1048,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             const PillarIndex idx = unpackKey(scan.keys[p]);
             gone.emplace_back(idx.m, idx.n);
         }
-        if (found.object || mover) objects.push_back({p, found.low, mover});
+        if (carry_on && (found.object || mover)) objects.push_back({p, found.low, mover});
     }
     // A mover's surface carried on across pillars. Pillars with an object are joined where the
     // scan's own image shows one surface across their boundary (oneSurface(), within the
@@ -1064,11 +1068,9 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // occupied. Only with a ringed sensor: one without rings samples a surface at new heights
     // every scan, so there what stands still is seen once or twice too (the rosette's SA -0.1
     // to -0.6 with it).
-    const bool one_sided = self_pos == 0 || self_pos == judges.size();
     auto carryOn = [&]
     {
-        if (!rings || !one_sided ||
-            std::none_of(objects.begin(), objects.end(),
+        if (std::none_of(objects.begin(), objects.end(),
                          [](const ObjectPillar& o) { return o.gone; }))
             return;
         // Object pillars by key, and their samples clear of the ground (the first and last
@@ -1129,21 +1131,24 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         };
         const int cols = layout.cols;
         const double tol = 0.5 * margin.base;
-        std::vector<uint8_t> freshness(objects.size(), 2);  // 2: not asked yet
-        auto fresh = [&](std::size_t o)
-        {
-            if (freshness[o] == 2) freshness[o] = seenTwiceAtMost(objects[o]) ? 1 : 0;
-            return freshness[o] == 1;
-        };
-        // The neighbour of pillar u (of `objects`) by (dm, dn), or objects.size() for none.
-        auto neighbour = [&](std::size_t u, int dm, int dn)
+        std::vector<uint8_t> fresh_of(objects.size());
+        for (std::size_t o = 0; o < objects.size(); ++o) fresh_of[o] = seenTwiceAtMost(objects[o]);
+        auto fresh = [&](std::size_t o) { return fresh_of[o] != 0; };
+        // `f(v)` for each of the 8 neighbours of pillar u (of `objects`) that is in `objects`.
+        auto forNeighbours = [&](std::size_t u, auto&& f)
         {
             const PillarIndex idx = unpackKey(scan.keys[objects[u].p]);
-            const std::pair<int64_t, int64_t> key(int64_t{idx.m} + dm, int64_t{idx.n} + dn);
-            const auto it = std::lower_bound(by_key.begin(), by_key.end(), key,
-                                             [](const auto& e, const std::pair<int64_t, int64_t>& k)
-                                             { return e.first < k; });
-            return it == by_key.end() || it->first != key ? objects.size() : it->second;
+            for (int dm = -1; dm <= 1; ++dm)
+                for (int dn = -1; dn <= 1; ++dn)
+                {
+                    if (dm == 0 && dn == 0) continue;
+                    const std::pair<int64_t, int64_t> key(int64_t{idx.m} + dm, int64_t{idx.n} + dn);
+                    const auto it =
+                        std::lower_bound(by_key.begin(), by_key.end(), key,
+                                         [](const auto& e, const std::pair<int64_t, int64_t>& k)
+                                         { return e.first < k; });
+                    if (it != by_key.end() && it->first == key) f(it->second);
+                }
         };
         // Only a surface that holds a pillar to carry on (not gone, seen twice at most) can
         // change anything: the pillars shown gone or seen twice at most are first joined by
@@ -1159,13 +1164,11 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         for (std::size_t o = 0; o < objects.size(); ++o)
         {
             if (!objects[o].gone && !fresh(o)) continue;
-            for (int dm = -1; dm <= 1; ++dm)
-                for (int dn = -1; dn <= 1; ++dn)
-                {
-                    const std::size_t v = neighbour(o, dm, dn);
-                    if (v < objects.size() && v > o && (objects[v].gone || fresh(v)))
-                        group[root(o)] = root(v);
-                }
+            forNeighbours(o,
+                          [&](std::size_t v)
+                          {
+                              if (v > o && (objects[v].gone || fresh(v))) group[root(o)] = root(v);
+                          });
         }
         std::vector<uint8_t> to_carry(objects.size(), 0);  // per group's root
         for (std::size_t o = 0; o < objects.size(); ++o)
@@ -1186,26 +1189,25 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             for (std::size_t q = 0; q < surface.size(); ++q)
             {
                 const std::size_t u = surface[q];
-                for (int dm = -1; dm <= 1; ++dm)
-                    for (int dn = -1; dn <= 1; ++dn)
-                    {
-                        const std::size_t v = neighbour(u, dm, dn);
-                        if (v == objects.size() || joined[v]) continue;
-                        const bool goes_on = objects[v].gone || fresh(v);
-                        if (!goes_on && counted_for[v] == start) continue;
-                        sample(v);
-                        if (!oneSurface(samples[u], samples[v], cols, tol)) continue;
-                        if (goes_on)
-                        {
-                            joined[v] = 1;
-                            surface.push_back(v);
-                        }
-                        else
-                        {
-                            counted_for[v] = start;
-                            held_points += points[v];
-                        }
-                    }
+                forNeighbours(u,
+                              [&](std::size_t v)
+                              {
+                                  if (joined[v]) return;
+                                  const bool goes_on = objects[v].gone || fresh(v);
+                                  if (!goes_on && counted_for[v] == start) return;
+                                  sample(v);
+                                  if (!oneSurface(samples[u], samples[v], cols, tol)) return;
+                                  if (goes_on)
+                                  {
+                                      joined[v] = 1;
+                                      surface.push_back(v);
+                                  }
+                                  else
+                                  {
+                                      counted_for[v] = start;
+                                      held_points += points[v];
+                                  }
+                              });
             }
             std::size_t gone_points = 0, all_points = held_points;
             for (const std::size_t o : surface)
