@@ -152,16 +152,18 @@ void BM_Insert(benchmark::State& state)
 }
 BENCHMARK(BM_Insert)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
-/** The grid geometry and parameters of share/hif/config/kitti.ini, read through MRPT. */
-std::pair<hif::GridGeometry, hif::Params> offlineConfig()
+/** The grid geometry and parameters of a shipped config (share/hif/config/), read through
+ *  MRPT. */
+std::pair<hif::GridGeometry, hif::Params> shippedConfig(const std::string& file)
 {
-    mrpt::config::CConfigFile cfg(HIF_SHARE_DIR "/config/kitti.ini");
+    mrpt::config::CConfigFile cfg(std::string(HIF_SHARE_DIR "/config/") + file);
     mrpt::maps::TSetOfMetricMapInitializers inits;
     inits.loadFromConfigFile(cfg, "map");
     const mrpt::maps::CMultiMetricMap maps(inits);
     const auto map = maps.mapByClass<hif::CHeightIntervalMap>();
     return {map->geometry(), map->params()};
 }
+std::pair<hif::GridGeometry, hif::Params> offlineConfig() { return shippedConfig("kitti.ini"); }
 
 /** Insertion with the offline configuration, read from share/hif/config/kitti.ini (see-through
  *  misses, p_empty_init 0.42, ground seen once; its free-space test is part of
@@ -318,23 +320,72 @@ void BM_ClassifyOfflineConfig(benchmark::State& state)
 BENCHMARK(BM_ClassifyOfflineConfig)->Unit(benchmark::kMillisecond);
 
 /** One scan added to a FreeSpaceTest (its fingerprint and range image built and stored),
- *  the test holding 21 scans (offline, 10 on each side). */
+ *  the test holding 21 scans (offline, 10 on each side). Argument image: 0, built from the
+ *  scan's points (FreeSpaceTest::add(points, pose, layout), as offline); 1, taken from the
+ *  image the map's insertion of the scan just built (add(points, pose, grid), as online: the
+ *  map of kitti-online.ini, the insertion not timed). */
 void BM_WindowImage(benchmark::State& state)
 {
     if (!haveScans(state)) return;
+    const bool from_insertion = state.range(0) != 0;
     hif::FreeSpaceTest test(21);
-    // Laid out as a map lays out the images of its sensor (estimated from the first scan).
-    const auto layout =
-        hif::RangeImageLayout::forSensor(hif::SensorModel::estimate(scans().view(0)));
+    const auto [geometry, params] = shippedConfig("kitti-online.ini");
+    hif::PillarGrid g(geometry, params);
+    g.insertScan(scans().view(0), scans().poses[0]);  // its sensor model, from the first scan
     std::size_t id = 0;
     for (auto _ : state)
     {
         const std::size_t k = id % scans().size();
-        test.add(scans().view(k), scans().poses[k], layout);
+        if (from_insertion)
+        {
+            state.PauseTiming();
+            g.insertScan(scans().view(k), scans().poses[k]);
+            state.ResumeTiming();
+            test.add(scans().view(k), scans().poses[k], g);
+        }
+        else
+            test.add(scans().view(k), scans().poses[k], g.imageLayout());
         ++id;
     }
 }
-BENCHMARK(BM_WindowImage)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_WindowImage)->ArgName("image")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+/** One scan online, as a SLAM system uses the map (share/hif/config/kitti-online.ini):
+ *  inserted, kept by the free-space test and classified against the past. Argument image: 0,
+ *  the test builds the scan's range image from its points (FreeSpaceTest::add(points, pose,
+ *  layout)); 1, it takes the image the insertion built (FreeSpaceTest::add(points, pose,
+ *  grid)), as CHeightIntervalMap does. After the last scan the map and the test restart empty
+ *  (not timed). */
+void BM_OnlineScan(benchmark::State& state)
+{
+    if (!haveScans(state)) return;
+    const bool from_insertion = state.range(0) != 0;
+    const auto [geometry, params] = shippedConfig("kitti-online.ini");
+    hif::PillarGrid g(geometry, params);
+    hif::FreeSpaceTest test(hif::FreeSpaceTest::capacityFor(params));
+    std::vector<uint8_t> dyn;
+    std::size_t k = 0;
+    for (auto _ : state)
+    {
+        const auto v = scans().view(k);
+        const Eigen::Isometry3d& T = scans().poses[k];
+        g.insertScan(v, T);
+        if (from_insertion)
+            test.add(v, T, g);
+        else
+            test.add(v, T, g.imageLayout());
+        g.classify(v, dyn, T, &test);
+        if (++k == scans().size())
+        {
+            state.PauseTiming();
+            k = 0;
+            g.clear();
+            test.clear();
+            state.ResumeTiming();
+        }
+    }
+}
+BENCHMARK(BM_OnlineScan)->ArgName("image")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 /** The offline run in memory: insert every scan, then classify every point. */
 void BM_OfflineRun(benchmark::State& state)

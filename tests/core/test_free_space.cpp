@@ -825,6 +825,73 @@ TEST(FreeSpaceTestScans, TheNewestAreKeptAndAScanIsFoundByItsPointsAndPose)
     EXPECT_THROW(copy.add(bad), std::invalid_argument);
 }
 
+// Online, the test keeps the scan just inserted with the image its insertion built for the
+// see-through gate, converted once: the same cells as an image built from the points, returns
+// a cell cannot hold (from 655.34 m on) and invalid points read as none in both. A scan other
+// than the one inserted, or one an offline grid inserted, has its image built from its points.
+TEST(FreeSpaceTestScans, TheScanJustInsertedKeepsTheImageItsInsertionBuilt)
+{
+    std::vector<Scan> scans = makeScans(0.3);
+    for (Scan& s : scans)
+    {
+        double az = 0.0;  // each in a cell of its own
+        for (const double r : {655.33, 655.342, 700.0, std::numeric_limits<double>::quiet_NaN()})
+        {
+            az += 0.01;
+            s.x.push_back(static_cast<float>(r * std::cos(az)));
+            s.y.push_back(static_cast<float>(r * std::sin(az)));
+            s.z.push_back(0.0f);
+            s.what.push_back(kNothing);
+        }
+    }
+    const Params online = freeSpaceParams();
+    ASSERT_TRUE(online.online);
+    PillarGrid grid(GridGeometry(), online);
+    FreeSpaceTest from_insertion(FreeSpaceTest::capacityFor(online));
+    FreeSpaceTest from_points(FreeSpaceTest::capacityFor(online));
+    for (const Scan& s : scans)
+    {
+        grid.insertScan(s.view(), s.pose);
+        from_insertion.add(s.view(), s.pose, grid);
+        from_points.add(s.view(), s.pose, grid.imageLayout());
+        EXPECT_TRUE(from_insertion == from_points);
+    }
+    ASSERT_EQ(from_insertion.size(), scans.size());
+
+    // A return moved nearer after the insertion, where the fingerprint does not read (it reads
+    // every 8th point of these scans): the image kept is the insertion's.
+    const Scan& last = scans.back();
+    ASSERT_GT(last.x.size() / FreeSpaceTest::kFingerprintPoints, 1u);
+    Scan moved = last;
+    moved.x[1] *= 0.5f;
+    moved.y[1] *= 0.5f;
+    moved.z[1] *= 0.5f;
+    ASSERT_EQ(FreeSpaceTest::fingerprint(moved.view(), moved.pose),
+              FreeSpaceTest::fingerprint(last.view(), last.pose));
+    FreeSpaceTest kept(1), of_last(1), of_moved(1);
+    kept.add(moved.view(), moved.pose, grid);
+    of_last.add(last.view(), last.pose, grid.imageLayout());
+    of_moved.add(moved.view(), moved.pose, grid.imageLayout());
+    EXPECT_TRUE(kept == of_last);
+    EXPECT_FALSE(kept == of_moved);
+
+    // Not the scan inserted last: built from its points.
+    FreeSpaceTest other(1), other_from_points(1);
+    other.add(scans[3].view(), scans[3].pose, grid);
+    other_from_points.add(scans[3].view(), scans[3].pose, grid.imageLayout());
+    EXPECT_TRUE(other == other_from_points);
+
+    // An offline grid keeps no image for the test: built from the points, the moved one too.
+    Params offline = online;
+    offline.online = false;
+    PillarGrid offline_grid(GridGeometry(), offline);
+    offline_grid.insertScan(last.view(), last.pose);
+    FreeSpaceTest built(1), moved_offline(1);
+    built.add(moved.view(), moved.pose, offline_grid);
+    moved_offline.add(moved.view(), moved.pose, offline_grid.imageLayout());
+    EXPECT_TRUE(built == moved_offline);
+}
+
 // An image keeps every cell, whole blocks of "no return" aside: a cell reads what it was, the
 // returns are visited in order, and a sparse image takes less than its cells would.
 TEST(FreeSpaceTestImage, EveryCellReadsWhatItWasAndEmptyBlocksTakeNoRoom)

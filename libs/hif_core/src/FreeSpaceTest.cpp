@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "GridAccess.h"
 #include "RangeImage.h"
 #include "hif/Params.h"
 #include "hif/PillarGrid.h"
@@ -40,6 +41,52 @@ void FreeSpaceTest::dropBeyondCapacity()
     }
 }
 
+template <typename Returned, typename Cell>
+void FreeSpaceTest::Image::assignFrom(int rows, int cols, bool by_band, Returned returned,
+                                      Cell cell)
+{
+    rows_ = rows;
+    cols_ = cols;
+    blocks_per_row_ = (static_cast<std::size_t>(cols) + kBlockCols - 1) / kBlockCols;
+    blocks_.assign(static_cast<std::size_t>(rows) * blocks_per_row_, kNoBlock);
+    // Every block (row r, columns c0 to c0 + n), in the order of the source's storage.
+    auto forBlocks = [&](auto&& f)
+    {
+        const auto bands = static_cast<int>(blocks_per_row_);
+        auto visit = [&](int r, int b)
+        {
+            const int c0 = b * static_cast<int>(kBlockCols);
+            f(r, c0, std::min(static_cast<int>(kBlockCols), cols - c0),
+              blocks_[static_cast<std::size_t>(r) * blocks_per_row_ + b]);
+        };
+        if (by_band)
+            for (int b = 0; b < bands; ++b)
+                for (int r = 0; r < rows; ++r) visit(r, b);
+        else
+            for (int r = 0; r < rows; ++r)
+                for (int b = 0; b < bands; ++b) visit(r, b);
+    };
+    // The blocks kept, then their cells (allocated once, at their size), after the empty one.
+    std::size_t kept = 1;
+    forBlocks(
+        [&](int r, int c0, int n, uint32_t& at)
+        {
+            if (!returned(r, c0, n)) return;
+            bool any = false;
+            for (int c = c0; c < c0 + n && !any; ++c) any = cell(r, c) != kNoReturn;
+            if (!any) return;
+            at = static_cast<uint32_t>(kept * kBlockCols);
+            ++kept;
+        });
+    cells_.assign(kept * kBlockCols, kNoReturn);
+    forBlocks(
+        [&](int r, int c0, int n, uint32_t at)
+        {
+            if (at == kNoBlock) return;
+            for (int c = 0; c < n; ++c) cells_[at + static_cast<uint32_t>(c)] = cell(r, c0 + c);
+        });
+}
+
 void FreeSpaceTest::Image::assign(int rows, int cols, const std::vector<uint16_t>& dense)
 {
     if (rows < 0 || cols < 0 ||
@@ -47,34 +94,10 @@ void FreeSpaceTest::Image::assign(int rows, int cols, const std::vector<uint16_t
         throw std::invalid_argument("hif::FreeSpaceTest::Image: " + std::to_string(dense.size()) +
                                     " cells for " + std::to_string(rows) + " rows of " +
                                     std::to_string(cols));
-    rows_ = rows;
-    cols_ = cols;
-    blocks_per_row_ = (static_cast<std::size_t>(cols) + kBlockCols - 1) / kBlockCols;
-    blocks_.assign(static_cast<std::size_t>(rows) * blocks_per_row_, kNoBlock);
-    // The blocks kept, then their cells (allocated once, at their size), after the empty one.
-    std::size_t kept = 1;
-    for (int r = 0; r < rows; ++r)
-    {
-        const uint16_t* row = dense.data() + static_cast<std::size_t>(r) * cols;
-        for (std::size_t b = 0; b < blocks_per_row_; ++b)
-        {
-            const std::size_t c0 = b * kBlockCols;
-            const std::size_t n = std::min<std::size_t>(kBlockCols, cols - c0);
-            if (std::all_of(row + c0, row + c0 + n, [](uint16_t v) { return v == kNoReturn; }))
-                continue;
-            blocks_[static_cast<std::size_t>(r) * blocks_per_row_ + b] =
-                static_cast<uint32_t>(kept * kBlockCols);
-            ++kept;
-        }
-    }
-    cells_.assign(kept * kBlockCols, kNoReturn);
-    for (std::size_t k = 0; k < blocks_.size(); ++k)
-    {
-        if (blocks_[k] == kNoBlock) continue;
-        const std::size_t r = k / blocks_per_row_, c0 = (k % blocks_per_row_) * kBlockCols;
-        const std::size_t n = std::min<std::size_t>(kBlockCols, cols - c0);
-        std::copy_n(dense.data() + r * cols + c0, n, cells_.data() + blocks_[k]);
-    }
+    const auto width = static_cast<std::size_t>(cols);
+    assignFrom(
+        rows, cols, false, [](int, int, int) { return true; },
+        [&](int r, int c) { return dense[static_cast<std::size_t>(r) * width + c]; });
 }
 
 bool operator==(const FreeSpaceTest::Image& a, const FreeSpaceTest::Image& b)
@@ -86,20 +109,71 @@ bool operator==(const FreeSpaceTest::Image& a, const FreeSpaceTest::Image& b)
     return true;
 }
 
-void FreeSpaceTest::add(const PointsView& points, const Eigen::Isometry3d& sensor_to_world,
-                        const RangeImageLayout& layout)
+template <typename Fill>
+void FreeSpaceTest::addWith(uint64_t points_fingerprint, const Eigen::Isometry3d& sensor_to_world,
+                            const RangeImageLayout& layout, Fill fill)
 {
-    if (capacity_ == 0) return;
     Scan s;
-    s.fingerprint = fingerprint(points, sensor_to_world);
+    s.fingerprint = withPose(points_fingerprint, sensor_to_world);
     s.sensor_to_world = sensor_to_world;
     s.layout = layout;
     s.image = std::move(spare_);
     spare_ = {};
-    detail::buildRangeImageCm(layout, points, dense_);
-    s.image.assign(layout.rows, layout.cols, dense_);
+    fill(s.image);
     scans_.push_back(std::move(s));
     dropBeyondCapacity();
+}
+
+void FreeSpaceTest::add(const PointsView& points, const Eigen::Isometry3d& sensor_to_world,
+                        const RangeImageLayout& layout)
+{
+    if (capacity_ == 0) return;
+    addWith(pointsFingerprint(points), sensor_to_world, layout,
+            [&](Image& image)
+            {
+                detail::buildRangeImageCm(layout, points, dense_);
+                image.assign(layout.rows, layout.cols, dense_);
+            });
+}
+
+void FreeSpaceTest::add(const PointsView& points, const Eigen::Isometry3d& sensor_to_world,
+                        const PillarGrid& grid)
+{
+    if (capacity_ == 0) return;
+    const RangeImageLayout& layout = grid.imageLayout();
+    const detail::Workspace& ws = detail::GridAccess::workspace(grid);
+    const uint64_t f = pointsFingerprint(points);
+    if (ws.range_image_points != f || !(ws.range_image_layout == layout) ||
+        ws.range_image.size() != layout.cells() ||
+        ws.returned_blocks.size() != layout.cells() / detail::kBlockCols + 1)
+    {
+        add(points, sensor_to_world, layout);
+        return;
+    }
+    // The insertion's image holds the same cells (the same nearest return, the same
+    // centimetres: BeamReturn::of()), column by column, and marks the blocks of cells (along
+    // the rows) where a point fell: only those are read.
+    const auto rows = static_cast<std::size_t>(layout.rows);
+    const auto cols = static_cast<std::size_t>(layout.cols);
+    const detail::BeamReturn* cells = ws.range_image.data();
+    const uint8_t* blocks = ws.returned_blocks.data();
+    addWith(f, sensor_to_world, layout,
+            [&](Image& image)
+            {
+                image.assignFrom(
+                    layout.rows, layout.cols, true,
+                    [&](int r, int c0, int n)
+                    {
+                        const std::size_t first = static_cast<std::size_t>(r) * cols + c0;
+                        const std::size_t b0 = first / detail::kBlockCols;
+                        const std::size_t b1 = (first + n - 1) / detail::kBlockCols;
+                        for (std::size_t b = b0; b <= b1; ++b)
+                            if (blocks[b]) return true;
+                        return false;
+                    },
+                    [&](int r, int c)
+                    { return cells[static_cast<std::size_t>(c) * rows + r].range_cm; });
+            });
 }
 
 void FreeSpaceTest::add(Scan scan)
@@ -136,18 +210,29 @@ uint64_t bitsOf(T v)
 }
 }  // namespace
 
-uint64_t FreeSpaceTest::fingerprint(const PointsView& pts, const Eigen::Isometry3d& T)
+uint64_t FreeSpaceTest::withPose(uint64_t points_fingerprint, const Eigen::Isometry3d& T)
 {
-    // The pose, the count and about 4,000 points spread over the scan (every point would cost
-    // 0.6 ms a scan of 120,000): two scans of a sequence never share all of them.
-    uint64_t h = mix(pts.size);
-    const std::size_t stride = std::max<std::size_t>(1, pts.size / kFingerprintPoints);
-    for (std::size_t i = 0; i < pts.size; i += stride)
-        h = mix(h ^ (bitsOf(pts.x[i]) | bitsOf(pts.y[i]) << 32)) ^ bitsOf(pts.z[i]);
+    uint64_t h = points_fingerprint;
     const Eigen::Matrix4d& m = T.matrix();
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 4; ++c) h = mix(h ^ bitsOf(m(r, c)));
     return h;
+}
+
+uint64_t FreeSpaceTest::pointsFingerprint(const PointsView& pts)
+{
+    // The count and about 4,000 points spread over the scan (every point would cost 0.6 ms a
+    // scan of 120,000): two scans of a sequence never share all of them.
+    uint64_t h = mix(pts.size);
+    const std::size_t stride = std::max<std::size_t>(1, pts.size / kFingerprintPoints);
+    for (std::size_t i = 0; i < pts.size; i += stride)
+        h = mix(h ^ (bitsOf(pts.x[i]) | bitsOf(pts.y[i]) << 32)) ^ bitsOf(pts.z[i]);
+    return h;
+}
+
+uint64_t FreeSpaceTest::fingerprint(const PointsView& pts, const Eigen::Isometry3d& T)
+{
+    return withPose(pointsFingerprint(pts), T);
 }
 
 std::optional<std::size_t> FreeSpaceTest::find(const PointsView& points,

@@ -32,7 +32,12 @@ struct Workspace
     std::vector<BeamReturn> range_image;       ///< the scan's returns (miss gates)
     std::vector<uint8_t> returned_blocks;      ///< of range_image (buildReturnImage())
     float farthest_return = 0.0f;              ///< of range_image: its farthest return, metres
-    std::vector<uint8_t> hit;                  ///< see-through misses: pillars the scan hit
+    /** Online with the free-space test: FreeSpaceTest::pointsFingerprint() of the scan whose
+     *  returns range_image holds, and its layout, so that the test takes its image from the
+     *  insertion (FreeSpaceTest::add(points, T, grid)); 0 and an empty layout otherwise. */
+    uint64_t range_image_points = 0;
+    RangeImageLayout range_image_layout{0, 0};
+    std::vector<uint8_t> hit;  ///< see-through misses: pillars the scan hit
     /** BeamGate::runs of the scan's image (ground seen once), and the scan's generation. */
     std::unique_ptr<std::atomic<uint8_t>[]> ground_runs;
     std::size_t ground_runs_cells = 0;
@@ -92,6 +97,8 @@ struct Workspace
         updater = PillarUpdater{LogOddsModel(), 1};
         range_image = {};
         returned_blocks = {};
+        range_image_points = 0;
+        range_image_layout = {0, 0};
         hit = {};
         ground_runs.reset();
         ground_runs_cells = 0;

@@ -167,7 +167,7 @@ __attribute__((target("avx"))) void beamReturnsAvx(const int32_t* cells, const f
             _mm_loadu_si128(reinterpret_cast<const __m128i*>(cells + j)), _mm_set1_epi32(-1)));
         const __m128 r = _mm_loadu_ps(ranges + j);
         const __m128 cm = _mm_add_ps(_mm_mul_ps(r, hundred), half);
-        const __m128 held = _mm_cmplt_ps(cm, none);  // false for NaN
+        const __m128 held = _mm_cmplt_ps(r, reach);  // false for NaN
         // std::clamp(): for the finite tangents of the cells used, max then min is the same.
         const __m128 q =
             _mm_min_ps(_mm_max_ps(_mm_mul_ps(_mm_loadu_ps(tans + j), steps), q_min), q_max);

@@ -107,13 +107,12 @@ struct BeamReturn
     }
     [[nodiscard]] double tan() const { return tan_q * kTanStep; }
     /** A return at `range` metres with elevation tangent `tan_el`, rounded (none from
-     *  655.345 m on, nor for a NaN range). */
+     *  kMaxCellRange on, as in the free-space test's images, nor for a NaN range). */
     static BeamReturn of(float range, float tan_el)
     {
         BeamReturn b;
-        const float cm = range * 100.0f + 0.5f;
-        if (!(cm < static_cast<float>(kNone))) return b;  // also NaN
-        b.range_cm = static_cast<uint16_t>(cm);
+        if (!(range < kMaxCellRange)) return b;  // also NaN
+        b.range_cm = static_cast<uint16_t>(range * 100.0f + 0.5f);
         const float q =
             std::clamp(tan_el * static_cast<float>(1.0 / kTanStep), -32767.0f, 32767.0f);
         b.tan_q = static_cast<int16_t>(q + (q >= 0.0f ? 0.5f : -0.5f));  // rounded

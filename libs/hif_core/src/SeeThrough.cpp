@@ -8,6 +8,7 @@
 
 #include "GridAccess.h"
 #include "RangeImage.h"
+#include "hif/FreeSpaceTest.h"
 
 namespace hif::detail
 {
@@ -57,6 +58,11 @@ void buildScanImage(PillarGrid& grid, const PointsView& pts)
     Workspace& ws = GridAccess::workspace(grid);
     ws.farthest_return =
         buildReturnImage(grid.imageLayout(), pts, ws.range_image, ws.returned_blocks);
+    // Online, the free-space test keeps the scan just inserted: it takes this image then.
+    const Params& p = grid.params();
+    const bool kept = p.online && p.free_space_window > 0;
+    ws.range_image_points = kept ? FreeSpaceTest::pointsFingerprint(pts) : 0;
+    ws.range_image_layout = kept ? grid.imageLayout() : RangeImageLayout{0, 0};
 }
 
 void seeThroughMisses(PillarGrid& grid, const Eigen::Isometry3d& T, const ScanBuckets& scan)

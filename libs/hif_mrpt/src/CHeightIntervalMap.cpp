@@ -65,7 +65,7 @@ bool CHeightIntervalMap::internal_insertObservation(
     const Eigen::Isometry3d T = mrpt_adapter::toIsometry(robot + sp.sensor_pose);
     last_insert_ = grid_.insertScan(sp.view, T);
     if (params().online)
-        free_space_.add(sp.view, T, grid_.imageLayout());  // the past of the next classify()
+        free_space_.add(sp.view, T, grid_);  // the past of the next classify()
     else if (classified_ && !warned_inserted_after_)
     {
         warned_inserted_after_ = true;

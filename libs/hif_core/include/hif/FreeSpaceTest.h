@@ -18,6 +18,7 @@
 
 namespace hif
 {
+class PillarGrid;
 struct PointsView;
 struct Params;
 
@@ -31,10 +32,11 @@ struct Params;
  *  every one held).
  *
  *  Online (Params::online: SLAM, each scan judged with the past only), add each scan once it
- *  is inserted and classify it right away: the test keeps it and the free_space_window scans
- *  before it. Offline (all scans inserted before any is classified), add the scans again in
- *  their order and classify scan k once scan k + free_space_window is added (or the last one
- *  is): the test keeps 2 free_space_window + 1. capacityFor() gives those. */
+ *  is inserted (add(points, pose, grid): its image is then the one the insertion built) and
+ *  classify it right away: the test keeps it and the free_space_window scans before it.
+ *  Offline (all scans inserted before any is classified), add the scans again in their order
+ *  and classify scan k once scan k + free_space_window is added (or the last one is): the
+ *  test keeps 2 free_space_window + 1. capacityFor() gives those. */
 class FreeSpaceTest
 {
 public:
@@ -96,6 +98,13 @@ public:
         friend bool operator==(const Image& a, const Image& b);
 
     private:
+        friend class FreeSpaceTest;
+        /** assign() from any source: `returned(row, col0, n)` is false only where none of
+         *  the cells [col0, col0 + n) of the row holds a return; `cell(row, col)` is a cell.
+         *  Blocks are read row by row, or with `by_band` (a source stored column by column)
+         *  a band of kBlockCols columns at a time, row after row. */
+        template <typename Returned, typename Cell>
+        void assignFrom(int rows, int cols, bool by_band, Returned returned, Cell cell);
         /** Where the cell at (row, col) is in cells_. */
         [[nodiscard]] std::size_t index(int row, int col) const
         {
@@ -140,6 +149,13 @@ public:
      *  scan beyond the capacity is dropped. */
     void add(const PointsView& points, const Eigen::Isometry3d& sensor_to_world,
              const RangeImageLayout& layout);
+    /** The same for the scan just inserted into `grid` (online), laid out as
+     *  grid.imageLayout(): its range image is taken from the one the insertion built for the
+     *  see-through gate (the same cells, converted once), when the grid's last insertion built
+     *  one for these points (the same pointsFingerprint()) in that layout; otherwise it is
+     *  built from the points, as above. */
+    void add(const PointsView& points, const Eigen::Isometry3d& sensor_to_world,
+             const PillarGrid& grid);
     /** Adds a scan as it was kept (scans() of another test: deserialization). Throws
      *  std::invalid_argument if its image does not have its layout's rows and columns. */
     void add(Scan scan);
@@ -152,6 +168,8 @@ public:
      *  and machine. */
     [[nodiscard]] static uint64_t fingerprint(const PointsView& points,
                                               const Eigen::Isometry3d& sensor_to_world);
+    /** The part of fingerprint() that reads the points (their count and coordinates). */
+    [[nodiscard]] static uint64_t pointsFingerprint(const PointsView& points);
 
     /** Oldest first. */
     [[nodiscard]] const std::deque<Scan>& scans() const { return scans_; }
@@ -166,6 +184,12 @@ public:
 
 private:
     void dropBeyondCapacity();
+    /** fingerprint() from pointsFingerprint(). */
+    static uint64_t withPose(uint64_t points_fingerprint, const Eigen::Isometry3d& sensor_to_world);
+    /** Adds a scan whose range image (row-major, dense_) is filled by `fill`. */
+    template <typename Fill>
+    void addWith(uint64_t points_fingerprint, const Eigen::Isometry3d& sensor_to_world,
+                 const RangeImageLayout& layout, Fill fill);
 
     std::size_t capacity_ = 0;
     std::deque<Scan> scans_;
