@@ -109,6 +109,24 @@ bool operator==(const FreeSpaceTest::Image& a, const FreeSpaceTest::Image& b)
     return true;
 }
 
+namespace
+{
+/** For Image::assignFrom(): whether a point fell in cells [c0, c0 + n) of row r of an image of
+ *  `cols` columns, from `blocks` (per detail::kBlockCols cells of the image flattened row by
+ *  row, as the range images mark them). */
+auto anyPointIn(const uint8_t* blocks, int cols)
+{
+    return [blocks, cols](int r, int c0, int n)
+    {
+        const std::size_t first = static_cast<std::size_t>(r) * static_cast<std::size_t>(cols) + c0;
+        for (std::size_t b = first / detail::kBlockCols; b <= (first + n - 1) / detail::kBlockCols;
+             ++b)
+            if (blocks[b]) return true;
+        return false;
+    };
+}
+}  // namespace
+
 template <typename Fill>
 void FreeSpaceTest::addWith(uint64_t points_fingerprint, const Eigen::Isometry3d& sensor_to_world,
                             const RangeImageLayout& layout, Fill fill)
@@ -131,8 +149,11 @@ void FreeSpaceTest::add(const PointsView& points, const Eigen::Isometry3d& senso
     addWith(pointsFingerprint(points), sensor_to_world, layout,
             [&](Image& image)
             {
-                detail::buildRangeImageCm(layout, points, dense_);
-                image.assign(layout.rows, layout.cols, dense_);
+                detail::buildRangeImageCm(layout, points, dense_, dense_blocks_);
+                const auto cols = static_cast<std::size_t>(layout.cols);
+                image.assignFrom(
+                    layout.rows, layout.cols, false, anyPointIn(dense_blocks_.data(), layout.cols),
+                    [&](int r, int c) { return dense_[static_cast<std::size_t>(r) * cols + c]; });
             });
 }
 
@@ -154,25 +175,15 @@ void FreeSpaceTest::add(const PointsView& points, const Eigen::Isometry3d& senso
     // centimetres: BeamReturn::of()), column by column, and marks the blocks of cells (along
     // the rows) where a point fell: only those are read.
     const auto rows = static_cast<std::size_t>(layout.rows);
-    const auto cols = static_cast<std::size_t>(layout.cols);
     const detail::BeamReturn* cells = ws.range_image.data();
-    const uint8_t* blocks = ws.returned_blocks.data();
     addWith(f, sensor_to_world, layout,
             [&](Image& image)
             {
-                image.assignFrom(
-                    layout.rows, layout.cols, true,
-                    [&](int r, int c0, int n)
-                    {
-                        const std::size_t first = static_cast<std::size_t>(r) * cols + c0;
-                        const std::size_t b0 = first / detail::kBlockCols;
-                        const std::size_t b1 = (first + n - 1) / detail::kBlockCols;
-                        for (std::size_t b = b0; b <= b1; ++b)
-                            if (blocks[b]) return true;
-                        return false;
-                    },
-                    [&](int r, int c)
-                    { return cells[static_cast<std::size_t>(c) * rows + r].range_cm; });
+                image.assignFrom(layout.rows, layout.cols, true,
+                                 anyPointIn(ws.returned_blocks.data(), layout.cols),
+                                 [&](int r, int c) {
+                                     return cells[static_cast<std::size_t>(c) * rows + r].range_cm;
+                                 });
             });
 }
 

@@ -340,7 +340,8 @@ float buildReturnImage(const RangeImageLayout& l, const PointsView& pts,
     return farthest;
 }
 
-void buildRangeImageCm(const RangeImageLayout& l, const PointsView& pts, std::vector<uint16_t>& img)
+void buildRangeImageCm(const RangeImageLayout& l, const PointsView& pts, std::vector<uint16_t>& img,
+                       std::vector<uint8_t>& blocks)
 {
     // Ranges from 655.34 m on read as "no return" (no LiDAR of interest reaches them).
     fillImage(
@@ -357,7 +358,7 @@ void buildRangeImageCm(const RangeImageLayout& l, const PointsView& pts, std::ve
 #endif
             rangesCmScalar(cells, ranges, n, out);
         },
-        [](uint16_t& cell, uint16_t v) { cell = std::min(cell, v); });
+        [](uint16_t& cell, uint16_t v) { cell = std::min(cell, v); }, &blocks);
 }
 
 }  // namespace hif::detail

@@ -834,8 +834,9 @@ float buildReturnImage(const RangeImageLayout& l, const PointsView& points,
 /** "No return" in a range image in centimetres. */
 constexpr uint16_t kNoReturnCm = 0xFFFF;
 
-/** buildRangeImage() in centimetres (rounded; kNoReturnCm where no return, or beyond 655 m). */
+/** buildRangeImage() in centimetres (rounded; kNoReturnCm where no return, or beyond 655 m),
+ *  row by row, and in `blocks` (as buildReturnImage()'s) where a point fell. */
 void buildRangeImageCm(const RangeImageLayout& l, const PointsView& points,
-                       std::vector<uint16_t>& img);
+                       std::vector<uint16_t>& img, std::vector<uint8_t>& blocks);
 
 }  // namespace hif::detail

@@ -193,8 +193,9 @@ private:
 
     std::size_t capacity_ = 0;
     std::deque<Scan> scans_;
-    Image spare_;                  ///< the image of the last scan dropped, reused
-    std::vector<uint16_t> dense_;  ///< all cells of the image being built
+    Image spare_;                        ///< the image of the last scan dropped, reused
+    std::vector<uint16_t> dense_;        ///< all cells of the image being built
+    std::vector<uint8_t> dense_blocks_;  ///< where its points fell (blocks of cells)
 };
 
 }  // namespace hif
