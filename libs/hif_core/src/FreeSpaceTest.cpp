@@ -259,7 +259,8 @@ std::optional<std::size_t> FreeSpaceTest::find(const PointsView& points,
 
 std::size_t FreeSpaceTest::memoryBytes() const
 {
-    std::size_t bytes = spare_.memoryBytes() + dense_.capacity() * sizeof(uint16_t);
+    std::size_t bytes =
+        spare_.memoryBytes() + dense_.capacity() * sizeof(uint16_t) + dense_blocks_.capacity();
     for (const Scan& s : scans_) bytes += sizeof(Scan) + s.image.memoryBytes();
     return bytes;
 }

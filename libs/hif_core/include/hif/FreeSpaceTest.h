@@ -186,7 +186,7 @@ private:
     void dropBeyondCapacity();
     /** fingerprint() from pointsFingerprint(). */
     static uint64_t withPose(uint64_t points_fingerprint, const Eigen::Isometry3d& sensor_to_world);
-    /** Adds a scan whose range image (row-major, dense_) is filled by `fill`. */
+    /** Adds a scan whose image `fill(image)` assigns (it is the spare one, reused). */
     template <typename Fill>
     void addWith(uint64_t points_fingerprint, const Eigen::Isometry3d& sensor_to_world,
                  const RangeImageLayout& layout, Fill fill);
