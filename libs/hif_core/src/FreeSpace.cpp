@@ -1025,6 +1025,27 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             hidden = true;
             found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance, true);
         }
+        // What shows above something standing in front of it, on a surface that faces the
+        // beams, is the top of what stands behind, however little of it shows: a walker's head
+        // and shoulders over a parked car, a car's roof over a barrier. Its lowest return is
+        // no ground (the scan could not see below it, groundHidden()) and faces the beams
+        // (facesBeams(): not foliage, not ground met at grazing incidence), so two entries make
+        // an object whatever height they span: ObjectTest::min_extent, there to keep out the
+        // texture and kerbs of ground in sight, is 0 for it. So is the height a floor the map
+        // holds must lie under the lowest return to be the ground the test measures from, and
+        // that return is then judged too.
+        if (!found.object && !any_dynamic && !tested.empty() && rings)
+        {
+            const Eigen::Vector3d lowest = lowestOf(p);
+            if (groundHidden(ownJudge(), lowest, margin) && facesBeams(ownJudge(), lowest, margin))
+            {
+                ObjectTest any_height = object;
+                any_height.min_extent = 0.0;
+                hidden = true;
+                found =
+                    any_height.entries(scan, p, pts, is_dynamic, tested, object.clearance, true);
+            }
+        }
         bool mover = found.moving;
         if (found.object)
         {
