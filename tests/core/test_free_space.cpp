@@ -186,6 +186,26 @@ std::vector<Scan> makeScans(double ego = 0.0)
     return scans;
 }
 
+/** Ten scans of rayScan() over `half_az` degrees on each side of ahead, rows `row_deg` apart,
+ *  from a sensor moving `ego` m per scan along x: scan i casts its rays from its origin o with
+ *  `cast(i, o, d, range)`. */
+template <typename Cast>
+std::vector<Scan> movingSensorScans(double ego, double half_az, Cast&& cast, double row_deg = 0.4)
+{
+    std::vector<Scan> scans;
+    for (int i = 0; i < 10; ++i)
+    {
+        Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+        pose.translation().x() = ego * i;
+        const Eigen::Vector3d o = pose.translation();
+        scans.push_back(rayScan(
+            pose, half_az,
+            [&](const Eigen::Vector3d& d, double& range) { return cast(i, o, d, range); },
+            row_deg));
+    }
+    return scans;
+}
+
 /** A sensor model whose rings lie `spacing` degrees apart from -20 to +4 degrees (the rows of
  *  rayScan() with that row spacing), 0.2 degrees apart horizontally. */
 SensorModel ringsEvery(double spacing)
@@ -496,22 +516,17 @@ TEST(FreeSpaceTest, AMoversLowestRingAtTheRoadsHeightGoesWithIt)
     for (const double ego : {0.0, 0.3})
     {
         SCOPED_TRACE("sensor moving " + std::to_string(ego) + " m per scan");
-        std::vector<Scan> scans;
-        for (int i = 0; i < 10; ++i)
-        {
-            Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-            pose.translation().x() = ego * i;
-            const Eigen::Vector3d o = pose.translation();
-            const double y = -8.0 + 1.5 * i;
-            const std::pair<Eigen::Vector3d, Eigen::Vector3d> car{
-                Eigen::Vector3d(30.9 + ego * i, y - 2.0, kGroundZ),
-                Eigen::Vector3d(32.7 + ego * i, y + 2.0, kGroundZ + 1.5)};
-            scans.push_back(rayScan(
-                pose, 60.0,
-                [&](const Eigen::Vector3d& d, double& range)
-                { return groundWallAndPerson(o, d, 60.0, car, range); },
-                0.85));
-        }
+        const std::vector<Scan> scans = movingSensorScans(
+            ego, 60.0,
+            [&](int i, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double& range)
+            {
+                const double y = -8.0 + 1.5 * i;
+                const std::pair<Eigen::Vector3d, Eigen::Vector3d> car{
+                    Eigen::Vector3d(30.9 + ego * i, y - 2.0, kGroundZ),
+                    Eigen::Vector3d(32.7 + ego * i, y + 2.0, kGroundZ + 1.5)};
+                return groundWallAndPerson(o, d, 60.0, car, range);
+            },
+            0.85);
         // The car's points less than 0.3 m above the road: its lowest ring.
         const auto [all, low, low_removed] = offlineWithModel(scans, model, 0.3);
         const auto& [without, with] = all;
@@ -710,20 +725,16 @@ TEST(FreeSpaceTest, AWalkerIsShownByItsLeadingEdgeWhicheverWayTheSweepGoes)
  *  line of sight), a wall behind, the sensor moving `ego` m per scan along x. */
 std::vector<Scan> radialWalkerScans(double ego, double step = 0.08)
 {
-    std::vector<Scan> scans;
-    for (int i = 0; i < 10; ++i)
-    {
-        Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-        pose.translation().x() = ego * i;
-        const Eigen::Vector3d o = pose.translation();
-        const double x = 15.2 - step * i;
-        const std::pair<Eigen::Vector3d, Eigen::Vector3d> person{
-            Eigen::Vector3d(x - 0.2, 0.8, kGroundZ), Eigen::Vector3d(x + 0.2, 1.2, kGroundZ + 1.7)};
-        scans.push_back(rayScan(pose, 30.0,
-                                [&](const Eigen::Vector3d& d, double& range)
-                                { return groundWallAndPerson(o, d, 25.5, person, range); }));
-    }
-    return scans;
+    return movingSensorScans(
+        ego, 30.0,
+        [&](int i, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double& range)
+        {
+            const double x = 15.2 - step * i;
+            const std::pair<Eigen::Vector3d, Eigen::Vector3d> person{
+                Eigen::Vector3d(x - 0.2, 0.8, kGroundZ),
+                Eigen::Vector3d(x + 0.2, 1.2, kGroundZ + 1.7)};
+            return groundWallAndPerson(o, d, 25.5, person, range);
+        });
 }
 
 TEST(FreeSpaceTest, APersonWalkingAlongTheLineOfSightIsShownByASteadyDrift)
@@ -1149,29 +1160,22 @@ TEST(FreeSpaceTest, AWalkersHeadAboveAWallIsTestedWhateverHeightShows)
     for (const double ego : {0.0, 0.3})
     {
         SCOPED_TRACE("sensor moving " + std::to_string(ego) + " m per scan");
-        std::vector<Scan> scans;
-        for (int i = 0; i < 10; ++i)
-        {
-            Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-            pose.translation().x() = ego * i;
-            const Eigen::Vector3d o = pose.translation();
-            const double x = 11.0 + 0.14 * i;  // 1.4 m/s along the wall
-            scans.push_back(
-                rayScan(pose, 60.0,
-                        [&](const Eigen::Vector3d& d, double& range)
-                        {
-                            What what = groundWallAndPerson(o, d, 25.0, std::nullopt, range);
-                            auto take = [&](double s, What w)
-                            {
-                                if (s > 1e-6 && s < range) range = s, what = w;
-                            };
-                            hitBox(o, d, {6.0, -4.2, kGroundZ}, {20.0, -4.0, kGroundZ + 1.4},
-                                   kFence, range, take);
-                            hitBox(o, d, {x, -5.6, kGroundZ}, {x + 0.6, -5.0, kGroundZ + 1.75},
-                                   kPerson, range, take);
-                            return what;
-                        }));
-        }
+        const std::vector<Scan> scans = movingSensorScans(
+            ego, 60.0,
+            [&](int i, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double& range)
+            {
+                What what = groundWallAndPerson(o, d, 25.0, std::nullopt, range);
+                auto take = [&](double s, What w)
+                {
+                    if (s > 1e-6 && s < range) range = s, what = w;
+                };
+                const double x = 11.0 + 0.14 * i;  // 1.4 m/s along the wall
+                hitBox(o, d, {6.0, -4.2, kGroundZ}, {20.0, -4.0, kGroundZ + 1.4}, kFence, range,
+                       take);
+                hitBox(o, d, {x, -5.6, kGroundZ}, {x + 0.6, -5.0, kGroundZ + 1.75}, kPerson, range,
+                       take);
+                return what;
+            });
         const auto [without, with] = withAndWithoutTheTest(scans);
         // Measured, standing and moving: the map alone and the test without this rule 0 %,
         // with it 100 %.
