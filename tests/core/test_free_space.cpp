@@ -170,22 +170,6 @@ Scan rayScan(const Eigen::Isometry3d& pose, double half_az, Cast&& cast, double 
     return s;
 }
 
-/** Ten scans of a sensor that stands still (or moves `ego` m per scan along x) over the 120
- *  degrees ahead (rayScan()); the person crosses at 0.15 m per scan. */
-std::vector<Scan> makeScans(double ego = 0.0)
-{
-    std::vector<Scan> scans;
-    for (int i = 0; i < 10; ++i)
-    {
-        Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-        pose.translation() = Eigen::Vector3d(ego * i, 0.0, 0.0);
-        scans.push_back(rayScan(pose, 60.0,
-                                [&](const Eigen::Vector3d& d, double& r)
-                                { return cast(pose.translation(), d, i, r); }));
-    }
-    return scans;
-}
-
 /** Ten scans of rayScan() over `half_az` degrees on each side of ahead, rows `row_deg` apart,
  *  from a sensor moving `ego` m per scan along x: scan i casts its rays from its origin o with
  *  `cast(i, o, d, range)`. */
@@ -204,6 +188,15 @@ std::vector<Scan> movingSensorScans(double ego, double half_az, Cast&& cast, dou
             row_deg));
     }
     return scans;
+}
+
+/** Ten scans of a sensor that stands still (or moves `ego` m per scan along x) over the 120
+ *  degrees ahead (rayScan()); the person crosses at 0.15 m per scan. */
+std::vector<Scan> makeScans(double ego = 0.0)
+{
+    return movingSensorScans(ego, 60.0,
+                             [](int i, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+                                double& r) { return cast(o, d, i, r); });
 }
 
 /** A sensor model whose rings lie `spacing` degrees apart from -20 to +4 degrees (the rows of
@@ -456,22 +449,17 @@ TEST(FreeSpaceTest, GroundAlongTheBeamsNextToAWalkerIsNotJudged)
 {
     const SensorModel model = ringsEvery(1.7);
     const RangeImageLayout layout = RangeImageLayout::forSensor(model);
-    std::vector<Scan> scans;
-    for (int i = 0; i < 10; ++i)
-    {
-        Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-        pose.translation().x() = 0.5 * i;
-        const Eigen::Vector3d o = pose.translation();
-        const double y = -1.5 + 0.3 * i;
-        const std::pair<Eigen::Vector3d, Eigen::Vector3d> person{
-            Eigen::Vector3d(10.3, y - 0.2, kGroundZ),
-            Eigen::Vector3d(10.7, y + 0.2, kGroundZ + 1.7)};
-        scans.push_back(rayScan(
-            pose, 60.0,
-            [&](const Eigen::Vector3d& d, double& range)
-            { return groundWallAndPerson(o, d, 45.0, person, range, 0.1); },
-            1.7));
-    }
+    const std::vector<Scan> scans = movingSensorScans(
+        0.5, 60.0,
+        [](int i, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double& range)
+        {
+            const double y = -1.5 + 0.3 * i;
+            const std::pair<Eigen::Vector3d, Eigen::Vector3d> person{
+                Eigen::Vector3d(10.3, y - 0.2, kGroundZ),
+                Eigen::Vector3d(10.7, y + 0.2, kGroundZ + 1.7)};
+            return groundWallAndPerson(o, d, 45.0, person, range, 0.1);
+        },
+        1.7);
     Params prm = freeSpaceParams();
     PillarGrid grid(GridGeometry(), prm);
     grid.setSensorModel(model);
@@ -976,21 +964,16 @@ TEST(MinRange, NearPointsAreNotInsertedAndAreDynamic)
 // the helper's box, kPerson.)
 std::vector<Scan> vanAheadScans()
 {
-    std::vector<Scan> scans;
     constexpr double kStep = 1.3;  // metres a scan, the sensor's and the van's
-    for (int i = 0; i < 10; ++i)
-    {
-        Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-        pose.translation().x() = kStep * i;
-        const Eigen::Vector3d o = pose.translation();
-        const std::pair<Eigen::Vector3d, Eigen::Vector3d> van{
-            Eigen::Vector3d(o.x() + 18.0, -0.9, kGroundZ + 0.2),
-            Eigen::Vector3d(o.x() + 22.5, 0.9, kGroundZ + 2.6)};
-        scans.push_back(rayScan(pose, 30.0,
-                                [&](const Eigen::Vector3d& d, double& range)
-                                { return groundWallAndPerson(o, d, 80.0, van, range); }));
-    }
-    return scans;
+    return movingSensorScans(
+        kStep, 30.0,
+        [](int, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double& range)
+        {
+            const std::pair<Eigen::Vector3d, Eigen::Vector3d> van{
+                Eigen::Vector3d(o.x() + 18.0, -0.9, kGroundZ + 0.2),
+                Eigen::Vector3d(o.x() + 22.5, 0.9, kGroundZ + 2.6)};
+            return groundWallAndPerson(o, d, 80.0, van, range);
+        });
 }
 
 Params vanAheadParams()
@@ -1206,21 +1189,16 @@ TEST(FreeSpaceTest, AWalkersHeadAboveAWallIsTestedWhateverHeightShows)
 TEST(FreeSpaceTest, ACarKeepingPaceIsTestedWhereTheMapSawPartOfItsPillarEmpty)
 {
     const SensorModel model = ringsEvery(1.7);
-    std::vector<Scan> scans;
-    for (int i = 0; i < 10; ++i)
-    {
-        Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-        pose.translation().x() = 1.3 * i;
-        const Eigen::Vector3d o = pose.translation();
-        const std::pair<Eigen::Vector3d, Eigen::Vector3d> car{
-            Eigen::Vector3d(o.x() + 27.0, -4.4, kGroundZ + 0.2),
-            Eigen::Vector3d(o.x() + 31.5, -2.6, kGroundZ + 1.5)};
-        scans.push_back(rayScan(
-            pose, 40.0,
-            [&](const Eigen::Vector3d& d, double& range)
-            { return groundWallAndPerson(o, d, 80.0, car, range); },
-            1.7));
-    }
+    const std::vector<Scan> scans = movingSensorScans(
+        1.3, 40.0,
+        [](int, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double& range)
+        {
+            const std::pair<Eigen::Vector3d, Eigen::Vector3d> car{
+                Eigen::Vector3d(o.x() + 27.0, -4.4, kGroundZ + 0.2),
+                Eigen::Vector3d(o.x() + 31.5, -2.6, kGroundZ + 1.5)};
+            return groundWallAndPerson(o, d, 80.0, car, range);
+        },
+        1.7);
     // The car's lower ring (its points less than 0.7 m above the road).
     const auto [all, low, low_removed] = offlineWithModel(scans, model, 0.7);
     const auto& [without, with] = all;
