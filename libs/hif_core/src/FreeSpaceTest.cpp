@@ -146,7 +146,14 @@ void FreeSpaceTest::add(const PointsView& points, const Eigen::Isometry3d& senso
                         const RangeImageLayout& layout)
 {
     if (capacity_ == 0) return;
-    addWith(pointsFingerprint(points), sensor_to_world, layout,
+    addFromPoints(pointsFingerprint(points), points, sensor_to_world, layout);
+}
+
+void FreeSpaceTest::addFromPoints(uint64_t points_fingerprint, const PointsView& points,
+                                  const Eigen::Isometry3d& sensor_to_world,
+                                  const RangeImageLayout& layout)
+{
+    addWith(points_fingerprint, sensor_to_world, layout,
             [&](Image& image)
             {
                 detail::buildRangeImageCm(layout, points, dense_, dense_blocks_);
@@ -168,7 +175,7 @@ void FreeSpaceTest::add(const PointsView& points, const Eigen::Isometry3d& senso
         ws.range_image.size() != layout.cells() ||
         ws.returned_blocks.size() != layout.cells() / detail::kBlockCols + 1)
     {
-        add(points, sensor_to_world, layout);
+        addFromPoints(f, points, sensor_to_world, layout);
         return;
     }
     // The insertion's image holds the same cells (the same nearest return, the same

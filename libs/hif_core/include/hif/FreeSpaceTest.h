@@ -186,6 +186,9 @@ private:
     void dropBeyondCapacity();
     /** fingerprint() from pointsFingerprint(). */
     static uint64_t withPose(uint64_t points_fingerprint, const Eigen::Isometry3d& sensor_to_world);
+    /** add(points, pose, layout) with the points' fingerprint found already. */
+    void addFromPoints(uint64_t points_fingerprint, const PointsView& points,
+                       const Eigen::Isometry3d& sensor_to_world, const RangeImageLayout& layout);
     /** Adds a scan whose image `fill(image)` assigns (it is the spare one, reused). */
     template <typename Fill>
     void addWith(uint64_t points_fingerprint, const Eigen::Isometry3d& sensor_to_world,
