@@ -11,14 +11,16 @@
 #
 # Environment: HIF_SENSORS (default: every sensor), HIF_SENSORS_SCENES (default "street walkers
 # cyclists traffic"), HIF_SENSORS_SCANS (default 10), HIF_SENSORS_SEED (default 1),
-# HIF_SENSORS_FOLIAGE (1: hif-synthetic-kitti --foliage, porous canopies, bushes and hedges).
-# Work files go to ${HIF_SENSORS_DIR:-build/sensors, build/sensors-foliage with foliage}/; clips
-# are generated once and reused.
+# HIF_SENSORS_FOLIAGE (1: hif-synthetic-kitti --foliage, porous canopies, bushes and hedges),
+# HIF_SENSORS_ROADSIDE (1: --roadside, traffic signs, street lights and railings).
+# Work files go to ${HIF_SENSORS_DIR:-build/sensors, build/sensors-foliage with foliage,
+# -roadside with street furniture}/; clips are generated once and reused. With street furniture
+# each line also gives its SA per class (fence, pole, traffic-sign).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${HIF_BUILD_DIR:-build}/apps
-source scripts/foliage-switch.sh
-foliage_switch HIF_SENSORS_FOLIAGE sensors
+source scripts/scene-switches.sh
+scene_switches HIF_SENSORS sensors
 ROOT=${HIF_SENSORS_DIR:-build/sensors$SUFFIX}
 SENSORS=${HIF_SENSORS:-hdl-64e hdl-32e vlp-16 os1-128 mid-70}
 SCENES=${HIF_SENSORS_SCENES:-street walkers cyclists traffic}
@@ -28,18 +30,22 @@ for app in hif-synthetic-kitti hif-clean hif-eval; do
   [ -x "$BIN/$app" ] || { echo "[sensors] $BIN/$app not built: run bash scripts/build.sh" >&2; exit 1; }
 done
 mkdir -p "$ROOT/runs"
-printf "%-8s %-9s %7s %7s %7s %7s %7s %7s\n" sensor scene SA DA AA car cyclist person
+FURNITURE=0
+[ "${HIF_SENSORS_ROADSIDE:-0}" = 1 ] && FURNITURE=1
+printf "%-8s %-9s %7s %7s %7s %7s %7s %7s" sensor scene SA DA AA car cyclist person
+[ $FURNITURE = 1 ] && printf " %7s %7s %7s" fence pole sign
+printf "\n"
 for sensor in $SENSORS; do
   for scene in $SCENES; do
     seq=$ROOT/clips/${sensor}_$scene
     if [ ! -f "$seq/times.txt" ]; then
       "$BIN/hif-synthetic-kitti" -o "$seq" --scene "$scene" --sensor "$sensor" --seed "$SEED" \
-        -n "$SCANS" "${FOLIAGE[@]}" --overwrite > /dev/null 2>&1
+        -n "$SCANS" "${SCENE_FLAGS[@]}" --overwrite > /dev/null 2>&1
     fi
     out=$ROOT/runs/${sensor}_$scene
     "$BIN/hif-clean" -i "$seq" -o "$out" -q --overwrite --no-png "$@" > "$out.log" 2>&1 \
       || { cat "$out.log" >&2; exit 1; }
     "$BIN/hif-eval" --labels "$seq/labels" --predictions "$out/predictions" -q > "$out.eval"
-    awk -v a="$sensor" -v b="$scene" -f scripts/score-line.awk "$out.eval"
+    awk -v a="$sensor" -v b="$scene" -v furniture=$FURNITURE -f scripts/score-line.awk "$out.eval"
   done
 done

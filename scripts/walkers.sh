@@ -15,16 +15,17 @@
 # Environment: HIF_WALKERS_SCENE (walkers, the default, radial or cyclists), HIF_WALKERS_SEEDS
 # (default "1 2 3"), HIF_WALKERS_SPEEDS (default "0 1 3 5"), HIF_WALKERS_SCANS (default 10),
 # HIF_WALKERS_MODES (default "offline online"), HIF_WALKERS_FOLIAGE (1: hif-synthetic-kitti
-# --foliage, porous canopies, bushes and hedges; the same people either way).
-# Work files go to ${HIF_WALKERS_DIR:-build/<scene>, build/<scene>-foliage with foliage}/; clips
-# are generated once and reused.
+# --foliage, porous canopies, bushes and hedges), HIF_WALKERS_ROADSIDE (1: --roadside, traffic
+# signs, street lights and railings); the same people either way.
+# Work files go to ${HIF_WALKERS_DIR:-build/<scene>, build/<scene>-foliage with foliage,
+# -roadside with street furniture}/; clips are generated once and reused.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${HIF_BUILD_DIR:-build}/apps
 SCENE=${HIF_WALKERS_SCENE:-walkers}
 case "$SCENE" in walkers|radial|cyclists) ;; *) echo "[walkers] HIF_WALKERS_SCENE=$SCENE is not walkers, radial or cyclists" >&2; exit 1;; esac
-source scripts/foliage-switch.sh
-foliage_switch HIF_WALKERS_FOLIAGE walkers
+source scripts/scene-switches.sh
+scene_switches HIF_WALKERS walkers
 ROOT=${HIF_WALKERS_DIR:-build/$SCENE$SUFFIX}
 SEEDS=${HIF_WALKERS_SEEDS:-1 2 3}
 SPEEDS=${HIF_WALKERS_SPEEDS:-0 1 3 5}
@@ -44,7 +45,7 @@ for mode in $MODES; do
       seq=$ROOT/clips/$clip
       if [ ! -f "$seq/scans.rawlog" ]; then
         "$BIN/hif-synthetic-kitti" -o "$seq" --scene "$SCENE" --ego-speed "$speed" --seed "$seed" \
-          -n "$SCANS" "${FOLIAGE[@]}" --overwrite > /dev/null 2>&1
+          -n "$SCANS" "${SCENE_FLAGS[@]}" --overwrite > /dev/null 2>&1
         "$BIN/kitti2rawlog" -i "$seq" -o "$seq/scans.rawlog" --overwrite > /dev/null 2>&1
       fi
       flag=""; [ "$mode" = online ] && flag=--online

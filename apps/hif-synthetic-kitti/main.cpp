@@ -69,6 +69,12 @@ struct Cli
         "passing through; the same beam a scan later meets another leaf. Without it, vegetation "
         "is solid; the rest of the scene is the same either way",
         cmd};
+    TCLAP::SwitchArg roadside{
+        "", "roadside",
+        "Street furniture thinner than a sparse LiDAR's beam spacing: traffic signs on thin poles "
+        "at the kerbs, street lights, and a railing along each sidewalk (SemanticKITTI's "
+        "traffic-sign, pole and fence). The rest of the scene is the same either way",
+        cmd};
     TCLAP::SwitchArg overwrite{"", "overwrite", "Replace an existing sequence folder", cmd};
 };
 
@@ -83,6 +89,7 @@ int run(Cli& cli)
     o.groups = cli.groups.getValue();
     o.sensor = cli.sensor.getValue();
     o.foliage = cli.foliage.getValue();
+    o.roadside = cli.roadside.getValue();
     o.overwrite = cli.overwrite.getValue();
     hif::jobs::SyntheticKitti(o).run(std::cout);
     return 0;

@@ -105,6 +105,12 @@ SyntheticKittiResult SyntheticKitti::run(std::ostream& log) const
         std::mt19937 leaves(seed ^ 0x1eafU);
         addFoliage(scene, leaves, length);
     }
+    if (o.roadside)
+    {
+        // A generator of its own too: the scene and its movers are those of the clip without.
+        std::mt19937 furniture(seed ^ 0x5194U);
+        addRoadside(scene, furniture, length);
+    }
     std::normal_distribution<double> noise(0.0, 0.01);
 
     // KITTI's LiDAR-to-camera calibration, rounded: camera x = -y, y = -z, z = x.

@@ -326,6 +326,41 @@ void addFoliage(Scene& s, std::mt19937& rng, double length)
     }
 }
 
+void addRoadside(Scene& s, std::mt19937& rng, double length)
+{
+    std::uniform_real_distribution<double> u(0, 1);
+    for (int side : {-1, 1})
+    {
+        // Traffic signs at the kerb, between the parked cars and the sidewalk.
+        for (double x = -20 + 10 * u(rng); x < length + 20; x += 12 + 15 * u(rng))
+        {
+            const double y = side * 7.3, gz = groundZ(x);
+            const double top = gz + 2.1 + 0.6 * u(rng), w = 0.6 + 0.3 * u(rng);
+            const double h = 0.6 + 0.3 * u(rng);
+            s.cylinders.push_back({x, y, 0.04, gz - 0.2, top - 0.05, kPole});
+            s.boxes.push_back({Eigen::Vector3d(x - 0.065, y - w / 2, top - h),
+                               Eigen::Vector3d(x - 0.035, y + w / 2, top), kTrafficSign});
+        }
+        // Street lights.
+        for (double x = -30 + 15 * u(rng); x < length + 30; x += 25 + 15 * u(rng))
+        {
+            const double gz = groundZ(x);
+            s.cylinders.push_back({x, side * 7.6, 0.1, gz - 0.2, gz + 6 + 2 * u(rng), kPole});
+        }
+        // A railing along a stretch of the sidewalk.
+        const double x0 = -10 + (length + 20) * 0.5 * u(rng), x1 = x0 + 20 + 30 * u(rng);
+        const double y = side * 8.0;
+        for (double x = x0; x < x1; x += 2.0)
+        {
+            const double gz = groundZ(x);
+            s.cylinders.push_back({x, y, 0.025, gz - 0.2, gz + 0.95, kFence});
+            const double xe = std::min(x + 2.0, x1);
+            s.boxes.push_back({Eigen::Vector3d(x, y - 0.025, gz + 0.95),
+                               Eigen::Vector3d(xe, y + 0.025, groundZ(xe) + 1.0), kFence});
+        }
+    }
+}
+
 Scene streetScene(std::mt19937& rng, double length)
 {
     Scene s;

@@ -16,6 +16,7 @@ namespace synth
 {
 // SemanticKITTI classes used by the scenes.
 constexpr uint32_t kRoad = 40, kBuilding = 50, kVegetation = 70, kTrunk = 71, kCar = 10;
+constexpr uint32_t kFence = 51, kPole = 80, kTrafficSign = 81;
 constexpr uint32_t kMovingCar = 252, kMovingBicyclist = 253, kMovingPerson = 254;
 
 constexpr double kSensorHeight = 1.73;  // metres above the ground, as on the KITTI car
@@ -108,6 +109,15 @@ struct Scene
  *  sensor moves) returns from another leaf or passes through. Draws from `rng` only: the rest of
  *  the scene (and its movers) is the same with and without foliage. */
 void addFoliage(Scene& s, std::mt19937& rng, double length);
+
+/** Street furniture thinner than a sparse LiDAR's beam spacing: traffic signs (a board 0.6-0.9 m
+ *  wide and tall, 3 cm thick, facing the traffic, on a pole 8 cm thick with its top 2.1-2.7 m
+ *  above the ground) at the kerbs, every 12-27 m on each side; street lights (poles 0.2 m thick,
+ *  6-8 m tall) every 25-40 m; and on each side a railing 2 m from the kerb along a stretch of
+ *  the street (a rail 5 cm square 1 m up, on posts 5 cm thick every 2 m). A 16-beam LiDAR's
+ *  beams are 0.5 m apart 15 m away: one ring on a board, none or one on a rail. Draws from
+ *  `rng` only: the rest of the scene (and its movers) is the same with and without. */
+void addRoadside(Scene& s, std::mt19937& rng, double length);
 
 /** The street of the default scene, `length` metres long (plus margins): buildings, trees and
  *  parked cars on both sides, four cars that drive and three people (boxes) that walk. */

@@ -28,6 +28,7 @@ struct SyntheticKittiOptions
     long long groups = 6;  ///< --groups (walkers, radial, cyclists, traffic)
     std::string sensor = "hdl-64e";  ///< --sensor
     bool foliage = false;    ///< --foliage: canopies, bushes and hedges that beams enter and pass
+    bool roadside = false;   ///< --roadside: traffic signs, street lights and railings
     bool overwrite = false;  ///< --overwrite
     bool show_progress = true;
 };
