@@ -13,6 +13,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -36,6 +37,24 @@ using hif::test::workDir;
 
 using hif::test::cleanAndScoreInput;
 using hif::test::noPicture;
+
+namespace
+{
+/** A clip of two walkers-scene scans in `work`/`name`, with what `set` changes; its folder. */
+std::string twoWalkerScans(const WorkDir& work, const std::string& name,
+                           const std::function<void(hif::jobs::SyntheticKittiOptions&)>& set)
+{
+    const std::string seq = work.path() + "/" + name;
+    const auto r = synthesize(seq, 2,
+                              [&](hif::jobs::SyntheticKittiOptions& o)
+                              {
+                                  o.scene = "walkers";
+                                  set(o);
+                              });
+    EXPECT_EQ(r.code, 0) << r.output;
+    return seq;
+}
+}  // namespace
 
 TEST(HifSyntheticKitti, EachSensorScansWithItsOwnBeams)
 {
@@ -112,16 +131,12 @@ TEST(HifSyntheticKitti, FoliageIsEnteredAndSeenThroughScanToScan)
     const WorkDir work = workDir("foliage_" + std::to_string(getpid()));
     const auto render = [&](const std::string& name, bool foliage)
     {
-        const std::string seq = work.path() + "/" + name;
-        const auto r = synthesize(seq, 2,
-                                  [&](hif::jobs::SyntheticKittiOptions& o)
-                                  {
-                                      o.scene = "walkers";
-                                      o.ego_speed = 0.0;
-                                      o.foliage = foliage;
-                                  });
-        EXPECT_EQ(r.code, 0) << r.output;
-        return seq;
+        return twoWalkerScans(work, name,
+                              [&](hif::jobs::SyntheticKittiOptions& o)
+                              {
+                                  o.ego_speed = 0.0;
+                                  o.foliage = foliage;
+                              });
     };
     struct Scan
     {
@@ -187,24 +202,20 @@ TEST(HifSyntheticKitti, FoliageIsEnteredAndSeenThroughScanToScan)
 }
 
 // --roadside: traffic signs on thin poles, street lights and railings, labelled as SemanticKITTI
-// labels them (traffic-sign 81, pole 80, fence 51). A VLP-16 driving down the street sees each
-// of them; nothing else of the scene changes: the same people, and every beam that meets no
-// furniture returns as it did without it.
+// labels them (traffic-sign 81, pole 80, fence 51). A VLP-16 driving down the street sees all
+// three in each scan; nothing else of the scene changes: the same people, and no other class
+// gains a point (the furniture only hides what lies behind it).
 TEST(HifSyntheticKitti, RoadsideFurnitureIsAddedAndTheRestOfTheSceneKept)
 {
     const WorkDir work = workDir("roadside_" + std::to_string(getpid()));
     const auto render = [&](const std::string& name, bool roadside)
     {
-        const std::string seq = work.path() + "/" + name;
-        const auto r = synthesize(seq, 2,
-                                  [&](hif::jobs::SyntheticKittiOptions& o)
-                                  {
-                                      o.scene = "walkers";
-                                      o.sensor = "vlp-16";
-                                      o.roadside = roadside;
-                                  });
-        EXPECT_EQ(r.code, 0) << r.output;
-        return seq;
+        return twoWalkerScans(work, name,
+                              [&](hif::jobs::SyntheticKittiOptions& o)
+                              {
+                                  o.sensor = "vlp-16";
+                                  o.roadside = roadside;
+                              });
     };
     const std::string plain = render("plain", false), furnished = render("furnished", true);
     ASSERT_FALSE(::testing::Test::HasFailure());
