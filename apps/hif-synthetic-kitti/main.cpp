@@ -72,8 +72,9 @@ struct Cli
     TCLAP::SwitchArg roadside{
         "", "roadside",
         "Street furniture thinner than a sparse LiDAR's beam spacing: traffic signs on thin poles "
-        "at the kerbs, street lights, and a railing along each sidewalk (SemanticKITTI's "
-        "traffic-sign, pole and fence). The rest of the scene is the same either way",
+        "at the sidewalks' edges, street lights, and a railing along a stretch of each sidewalk "
+        "(SemanticKITTI's traffic-sign, pole and fence). The rest of the scene is the same either "
+        "way",
         cmd};
     TCLAP::SwitchArg overwrite{"", "overwrite", "Replace an existing sequence folder", cmd};
 };

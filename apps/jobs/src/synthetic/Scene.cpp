@@ -331,7 +331,7 @@ void addRoadside(Scene& s, std::mt19937& rng, double length)
     std::uniform_real_distribution<double> u(0, 1);
     for (int side : {-1, 1})
     {
-        // Traffic signs at the kerb, between the parked cars and the sidewalk.
+        // Traffic signs at the sidewalk's edge, behind the parked cars.
         for (double x = -20 + 10 * u(rng); x < length + 20; x += 12 + 15 * u(rng))
         {
             const double y = side * 7.3, gz = groundZ(x);

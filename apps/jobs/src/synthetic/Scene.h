@@ -110,13 +110,14 @@ struct Scene
  *  the scene (and its movers) is the same with and without foliage. */
 void addFoliage(Scene& s, std::mt19937& rng, double length);
 
-/** Street furniture thinner than a sparse LiDAR's beam spacing: traffic signs (a board 0.6-0.9 m
+/** Street furniture thinner than a sparse LiDAR's beam spacing, on each side of the street
+ *  behind the parked cars: traffic signs 7.3 m from its middle every 12-27 m (a board 0.6-0.9 m
  *  wide and tall, 3 cm thick, facing the traffic, on a pole 8 cm thick with its top 2.1-2.7 m
- *  above the ground) at the kerbs, every 12-27 m on each side; street lights (poles 0.2 m thick,
- *  6-8 m tall) every 25-40 m; and on each side a railing 2 m from the kerb along a stretch of
- *  the street (a rail 5 cm square 1 m up, on posts 5 cm thick every 2 m). A 16-beam LiDAR's
- *  beams are 0.5 m apart 15 m away: one ring on a board, none or one on a rail. Draws from
- *  `rng` only: the rest of the scene (and its movers) is the same with and without. */
+ *  above the ground); street lights 7.6 m from it every 25-40 m (poles 0.2 m thick, 6-8 m
+ *  tall); and a railing 8 m from it along a stretch of 20-50 m (a rail 5 cm square 1 m up, on
+ *  posts 5 cm thick every 2 m). A 16-beam LiDAR's beams are 0.5 m apart 15 m away: one ring on
+ *  a board, none or one on a rail. Draws from `rng` only: the rest of the scene (and its
+ *  movers) is the same with and without. */
 void addRoadside(Scene& s, std::mt19937& rng, double length);
 
 /** The street of the default scene, `length` metres long (plus margins): buildings, trees and
