@@ -5,7 +5,8 @@
 # (../shared/data/kitti, or $HIF_KITTI_DIR), each cleaned offline and online with the shipped
 # configs, from a rawlog (kitti2rawlog) and straight from the sequence folder. Prints one line per
 # output file (sha256, then the file) and, from summary.json, the counts (timings left out: they
-# differ from run to run). Clouds are written in both formats (--format both).
+# differ from run to run). Clouds are written in both formats (--format both). The map file is
+# digested by its content (decompressed).
 #
 #   bash scripts/output-digest.sh > before.txt     # on the old code
 #   bash scripts/output-digest.sh > after.txt      # on the new code
@@ -40,8 +41,10 @@ for name in "${inputs[@]}"; do
       src=$d/scans.rawlog; out=$d/$mode; [ $input = folder ] && src=$d/seq out=$d/$mode-from-folder
       rm -rf "${out:?}"
       "$BIN/hif-clean" -i "$src" -o "$out" $flag --format both -q > /dev/null
-      (cd "$out" && find . -type f ! -name summary.json | LC_ALL=C sort | xargs sha256sum) \
-        | sed "s|  \./|  $name/${out##*/}/|"
+      (cd "$out" && find . -type f ! -name summary.json ! -name map.hifmap | LC_ALL=C sort \
+        | xargs sha256sum) | sed "s|  \./|  $name/${out##*/}/|"
+      # The map by what it holds, not by how the gzip file around it is compressed.
+      echo "$(gzip -dc "$out/map.hifmap" | sha256sum | cut -d' ' -f1)  $name/${out##*/}/map.hifmap (content)"
       grep -E '"(scans|points_in|points_kept|points_removed|points_invalid|pillars|intervals)"' \
         "$out/summary.json" | tr -d ' ,' | sed "s|^|$name/${out##*/}/summary.json |"
     done

@@ -307,8 +307,14 @@ void CHeightIntervalMap::saveSceneToFile(const std::string& file) const
 
 void CHeightIntervalMap::saveToFile(const std::string& file) const
 {
+    // A gzip file whose blocks are stored, not deflated: the same bytes inside, readable as any
+    // gzip file, in a tenth of the time. Most of a map file is its free-space test's range
+    // images, which deflate only to about half (KITTI 08's map: 9.0 MB, 4.9 MB at level 1), and
+    // deflating them took 0.13 s of hif-clean's 0.9 s on that clip, at the end of the run.
+    constexpr int kStored = 0;
     mrpt::io::CFileGZOutputStream f;
-    if (!f.open(file, 1)) throw std::runtime_error("Error writing to target file '" + file + "'");
+    if (!f.open(file, kStored))
+        throw std::runtime_error("Error writing to target file '" + file + "'");
     auto arch = mrpt::serialization::archiveFrom(f);
     arch << *this;
 }

@@ -181,8 +181,9 @@ public:
     /** Writes `<prefix>_intervals.txt` (one interval per line: x_min y_min x_max y_max z_bottom
      *  z_top p_static) and `<prefix>_3D.3Dscene` (the visualization). */
     void saveMetricMapRepresentationToFile(const std::string& filNamePrefix) const override;
-    /** Writes the map MRPT-serialized and gzip-compressed (hif-clean's map.hifmap); read it
-     *  back with loadFromFile(). Throws
+    /** Writes the map MRPT-serialized, in a gzip file of stored blocks (not compressed: most
+     *  of it is range images, which compress poorly and slowly; hif-clean's map.hifmap); read
+     *  it back with loadFromFile(). Throws
      *  std::runtime_error naming the file if it cannot be written. */
     void saveToFile(const std::string& file) const;
     /** Reads a map that saveToFile() wrote (or any MRPT-serialized hif::CHeightIntervalMap,
