@@ -825,6 +825,34 @@ TEST(FreeSpaceTestScans, TheNewestAreKeptAndAScanIsFoundByItsPointsAndPose)
     EXPECT_THROW(copy.add(bad), std::invalid_argument);
 }
 
+// A scan made apart (ScanMaker, as hif-clean's second pass does on another thread) is the scan
+// the test makes from the same points: the same fingerprint, pose and cells, whichever scan the
+// maker made before.
+TEST(FreeSpaceTestScans, AScanMadeApartIsTheOneAddedByItsPoints)
+{
+    const std::vector<Scan> scans = makeScans(0.3);
+    ASSERT_GE(scans.size(), 4u);
+    FreeSpaceTest by_points(3), made(3);
+    FreeSpaceTest::ScanMaker maker;
+    for (std::size_t i = 0; i < scans.size(); ++i)
+    {
+        by_points.add(scans[i].view(), scans[i].pose, kLayout);
+        made.add(maker.make(scans[i].view(), scans[i].pose, kLayout));
+    }
+    ASSERT_EQ(made.size(), 3u);
+    EXPECT_TRUE(made == by_points);
+    const FreeSpaceTest::Scan again = maker.make(scans[0].view(), scans[0].pose, kLayout);
+    EXPECT_EQ(again.fingerprint, FreeSpaceTest::fingerprint(scans[0].view(), scans[0].pose));
+    FreeSpaceTest first(1), first_made(1);
+    first.add(scans[0].view(), scans[0].pose, kLayout);
+    first_made.add(again);
+    EXPECT_TRUE(first_made == first);
+    FreeSpaceTest second(1);  // another scan: the comparison can fail
+    second.add(scans[1].view(), scans[1].pose, kLayout);
+    EXPECT_FALSE(first_made == second);
+    EXPECT_GT(maker.memoryBytes(), 0u);
+}
+
 // Online, the test keeps the scan just inserted with the image its insertion built for the
 // see-through gate, converted once: the same cells as an image built from the points, returns
 // a cell cannot hold (from 655.34 m on) and invalid points read as none in both. A scan other

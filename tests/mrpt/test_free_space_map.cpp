@@ -23,7 +23,9 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "hif/CHeightIntervalMap.h"
@@ -226,6 +228,52 @@ TEST(FreeSpaceMap, ASavedMapClassifiesAsTheSavedOneDid)
         EXPECT_GT(a.seen_through_points, 0u);
         EXPECT_EQ(a.seen_through_points, b.seen_through_points);
     }
+}
+
+// The second pass in two steps, as hif-clean runs it: each scan for the test made on another
+// thread while the map classifies, then added in order. The classes are those of the scans
+// added by their observations; a scan made for another sensor model's layout is refused.
+TEST(FreeSpaceMap, ScansMadeOnAnotherThreadJudgeAsTheObservationsDo)
+{
+    const std::string dir = hif::test::kittiRoot() + "/sequences/04";
+    HIF_REQUIRE_KITTI_SEQUENCE(dir);
+    const Clip clip(dir, 10);
+    Maps by_obs("kitti.ini");
+    const std::vector<std::vector<uint8_t>> expected = offlineClasses(by_obs, clip);
+    Maps m("kitti.ini");
+    for (std::size_t i = 0; i < clip.size(); ++i)
+        m.multi.insertObservation(*clip.scans[i], clip.poses[i]);
+    const std::size_t w = m.map->params().free_space_window;
+    hif::FreeSpaceTest::ScanMaker maker;
+    std::vector<std::vector<uint8_t>> classes(clip.size());
+    std::size_t next = 0;
+    for (std::size_t k = 0; k < clip.size(); ++k)
+    {
+        for (; next < clip.size() && next <= k + w; ++next)
+        {
+            std::optional<hif::FreeSpaceTest::Scan> made;
+            std::thread(
+                [&]
+                { made = m.map->makeFreeSpaceScan(*clip.scans[next], clip.poses[next], maker); })
+                .join();
+            ASSERT_TRUE(made);
+            m.map->addToFreeSpaceTest(std::move(*made));
+        }
+        m.map->classify(*clip.scans[k], clip.poses[k], classes[k]);
+    }
+    EXPECT_EQ(classes, expected);
+    EXPECT_GT(dynamicCount(classes[5]), 0u);
+    EXPECT_TRUE(m.map->freeSpaceTest() == by_obs.map->freeSpaceTest());
+
+    std::optional<hif::FreeSpaceTest::Scan> other =
+        m.map->makeFreeSpaceScan(*clip.scans[0], clip.poses[0], maker);
+    ASSERT_TRUE(other);
+    other->layout.rows += 2;
+    other->image.assign(other->layout.rows, other->layout.cols,
+                        std::vector<uint16_t>(static_cast<std::size_t>(other->layout.rows) *
+                                                  static_cast<std::size_t>(other->layout.cols),
+                                              hif::FreeSpaceTest::kNoReturn));
+    EXPECT_THROW(m.map->addToFreeSpaceTest(std::move(*other)), std::invalid_argument);
 }
 
 // The images in a saved map are read only when laid out as the map's own (which bounds what a

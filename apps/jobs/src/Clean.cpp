@@ -28,6 +28,7 @@
 #include "hif/apps/RunFiles.h"
 #include "hif/apps/ScanSource.h"
 #include "hif/apps/Staged.h"
+#include "hif/apps/Worker.h"
 #include "hif/io/Trajectory.h"
 
 namespace fs = std::filesystem;
@@ -322,19 +323,32 @@ void classifyAll(Run& run, std::vector<hif::apps::Scan>& held, Outputs& out, std
         s.obs->load();
         return s;
     };
+    // The free-space test takes the scans ahead of the one classified: each is read (from
+    // run.source, or held) and its range image built on a thread of its own, one scan ahead,
+    // while this one classifies.
+    hif::FreeSpaceTest::ScanMaker maker;
+    std::optional<hif::FreeSpaceTest::Scan> made;
+    hif::apps::Worker maker_thread;  // last: its destructor waits for the job it holds
+    auto make = [&](std::size_t n)
+    {
+        maker_thread.run(
+            [&, n]
+            {
+                const hif::apps::Scan& s = run.hold_scans ? held[n] : read(*run.source, n);
+                made = run.hif_map->makeFreeSpaceScan(*s.obs, s.robot_pose, maker);
+                if (!run.hold_scans) s.obs->unload();
+            });
+    };
     std::size_t next = 0;  // the next scan to give to the free-space test
+    if (w > 0 && scans > 0) make(0);
     for (std::size_t k = 0; k < scans; ++k)
     {
         for (; w > 0 && next < scans && next <= k + w; ++next)
         {
-            if (run.hold_scans)
-            {
-                run.hif_map->addToFreeSpaceTest(*held[next].obs, held[next].robot_pose);
-                continue;
-            }
-            const hif::apps::Scan s = read(*run.source, next);
-            run.hif_map->addToFreeSpaceTest(*s.obs, s.robot_pose);
-            s.obs->unload();
+            maker_thread.wait();  // rethrows what reading or making it threw
+            if (made) run.hif_map->addToFreeSpaceTest(std::move(*made));
+            made.reset();
+            if (next + 1 < scans) make(next + 1);
         }
         hif::apps::Scan s =
             run.hold_scans ? std::move(held[k]) : read(behind ? *behind : *run.source, k);
@@ -418,7 +432,7 @@ CleanResult Clean::run(std::ostream& log) const
     const Outputs::RawlogWritten rawlog = out.closeRawlog();
     run.hif_map->releaseScanBuffers();
     hif::apps::returnFreeHeap();
-    // The map, serialized and compressed, is saved on a second thread while the clouds are
+    // The map, serialized, is saved on a second thread while the clouds are
     // finished (the copies of their bodies) and the picture is drawn.
     auto saved =
         std::async(std::launch::async, [&] { run.hif_map->saveToFile(dir + "/map.hifmap"); });

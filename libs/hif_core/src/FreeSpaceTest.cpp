@@ -9,6 +9,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "GridAccess.h"
 #include "RangeImage.h"
@@ -153,15 +154,40 @@ void FreeSpaceTest::addFromPoints(uint64_t points_fingerprint, const PointsView&
                                   const Eigen::Isometry3d& sensor_to_world,
                                   const RangeImageLayout& layout)
 {
-    addWith(points_fingerprint, sensor_to_world, layout,
-            [&](Image& image)
-            {
-                detail::buildRangeImageCm(layout, points, dense_, dense_blocks_);
-                const auto cols = static_cast<std::size_t>(layout.cols);
-                image.assignFrom(
-                    layout.rows, layout.cols, false, anyPointIn(dense_blocks_.data(), layout.cols),
-                    [&](int r, int c) { return dense_[static_cast<std::size_t>(r) * cols + c]; });
-            });
+    scans_.push_back(maker_.makeWith(points_fingerprint, points, sensor_to_world, layout,
+                                     std::exchange(spare_, {})));
+    dropBeyondCapacity();
+}
+
+FreeSpaceTest::Scan FreeSpaceTest::ScanMaker::make(const PointsView& points,
+                                                   const Eigen::Isometry3d& sensor_to_world,
+                                                   const RangeImageLayout& layout)
+{
+    return makeWith(pointsFingerprint(points), points, sensor_to_world, layout, {});
+}
+
+FreeSpaceTest::Scan FreeSpaceTest::ScanMaker::makeWith(uint64_t points_fingerprint,
+                                                       const PointsView& points,
+                                                       const Eigen::Isometry3d& sensor_to_world,
+                                                       const RangeImageLayout& layout,
+                                                       Image storage)
+{
+    Scan s;
+    s.fingerprint = withPose(points_fingerprint, sensor_to_world);
+    s.sensor_to_world = sensor_to_world;
+    s.layout = layout;
+    s.image = std::move(storage);
+    detail::buildRangeImageCm(layout, points, dense_, blocks_);
+    const auto cols = static_cast<std::size_t>(layout.cols);
+    s.image.assignFrom(layout.rows, layout.cols, false, anyPointIn(blocks_.data(), layout.cols),
+                       [&](int r, int c)
+                       { return dense_[static_cast<std::size_t>(r) * cols + c]; });
+    return s;
+}
+
+std::size_t FreeSpaceTest::ScanMaker::memoryBytes() const
+{
+    return dense_.capacity() * sizeof(uint16_t) + blocks_.capacity();
 }
 
 void FreeSpaceTest::add(const PointsView& points, const Eigen::Isometry3d& sensor_to_world,
@@ -266,8 +292,7 @@ std::optional<std::size_t> FreeSpaceTest::find(const PointsView& points,
 
 std::size_t FreeSpaceTest::memoryBytes() const
 {
-    std::size_t bytes =
-        spare_.memoryBytes() + dense_.capacity() * sizeof(uint16_t) + dense_blocks_.capacity();
+    std::size_t bytes = spare_.memoryBytes() + maker_.memoryBytes();
     for (const Scan& s : scans_) bytes += sizeof(Scan) + s.image.memoryBytes();
     return bytes;
 }

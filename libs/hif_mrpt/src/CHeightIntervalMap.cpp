@@ -205,6 +205,26 @@ bool CHeightIntervalMap::addToFreeSpaceTest(const mrpt::obs::CObservation& obs,
     return true;
 }
 
+std::optional<FreeSpaceTest::Scan> CHeightIntervalMap::makeFreeSpaceScan(
+    const mrpt::obs::CObservation& obs, const mrpt::poses::CPose3D& robotPose,
+    FreeSpaceTest::ScanMaker& maker) const
+{
+    SensorPoints sp;
+    if (!mrpt_adapter::sensorPoints(obs, sp)) return std::nullopt;
+    return maker.make(sp.view, mrpt_adapter::toIsometry(robotPose + sp.sensor_pose),
+                      grid_.imageLayout());
+}
+
+void CHeightIntervalMap::addToFreeSpaceTest(FreeSpaceTest::Scan scan)
+{
+    applyOptions();
+    if (!(scan.layout == grid_.imageLayout()))
+        throw std::invalid_argument(
+            "hif::CHeightIntervalMap::addToFreeSpaceTest: a scan made for another sensor "
+            "model's range image than the map's");
+    free_space_.add(std::move(scan));
+}
+
 bool CHeightIntervalMap::internal_canComputeObservationLikelihood(
     const mrpt::obs::CObservation& obs) const
 {

@@ -133,6 +133,32 @@ public:
         Image image;
     };
 
+    /** Makes scans for add(Scan) as add(points, sensor_to_world, layout) makes them, away from
+     *  the test: on another thread while the test judges (hif-clean's second pass builds the
+     *  next scan's image while it classifies). It keeps its buffers from one scan to the
+     *  next; one maker per thread. */
+    class ScanMaker
+    {
+    public:
+        /** The scan of `points` (sensor frame) at `sensor_to_world`, its range image laid out
+         *  as `layout`. */
+        [[nodiscard]] Scan make(const PointsView& points, const Eigen::Isometry3d& sensor_to_world,
+                                const RangeImageLayout& layout);
+        /** Heap memory of its buffers. */
+        [[nodiscard]] std::size_t memoryBytes() const;
+
+    private:
+        friend class FreeSpaceTest;
+        /** make() with the points' fingerprint (pointsFingerprint()) found already, the image
+         *  in the memory of `storage`. */
+        Scan makeWith(uint64_t points_fingerprint, const PointsView& points,
+                      const Eigen::Isometry3d& sensor_to_world, const RangeImageLayout& layout,
+                      Image storage);
+
+        std::vector<uint16_t> dense_;  ///< all cells of the image being built
+        std::vector<uint8_t> blocks_;  ///< where its points fell (blocks of cells)
+    };
+
     /** A test that keeps the newest `capacity` scans added (0: none; the test is off). */
     explicit FreeSpaceTest(std::size_t capacity = 0) : capacity_(capacity) {}
 
@@ -156,8 +182,9 @@ public:
      *  built from the points, as above. */
     void add(const PointsView& points, const Eigen::Isometry3d& sensor_to_world,
              const PillarGrid& grid);
-    /** Adds a scan as it was kept (scans() of another test: deserialization). Throws
-     *  std::invalid_argument if its image does not have its layout's rows and columns. */
+    /** Adds a scan as it was kept (scans() of another test: deserialization), or as a
+     *  ScanMaker made it. Throws std::invalid_argument if its image does not have its layout's
+     *  rows and columns. */
     void add(Scan scan);
 
     /** Position in scans() of the scan with these points at this pose, if the test holds it. */
@@ -196,9 +223,8 @@ private:
 
     std::size_t capacity_ = 0;
     std::deque<Scan> scans_;
-    Image spare_;                        ///< the image of the last scan dropped, reused
-    std::vector<uint16_t> dense_;        ///< all cells of the image being built
-    std::vector<uint8_t> dense_blocks_;  ///< where its points fell (blocks of cells)
+    Image spare_;      ///< the image of the last scan dropped, reused
+    ScanMaker maker_;  ///< for the scans added by their points
 };
 
 }  // namespace hif

@@ -83,6 +83,16 @@ public:
      *  and this is not needed. Returns false for an observation type the map cannot insert. */
     bool addToFreeSpaceTest(const mrpt::obs::CObservation& obs,
                             const mrpt::poses::CPose3D& robotPose);
+    /** addToFreeSpaceTest() in two steps, so that the second pass can build a scan's range
+     *  image (most of the cost) on another thread while this map classifies: the scan for the
+     *  test, made by `maker` (one per thread; this map is only read), laid out for the map's
+     *  sensor model; nullopt for an observation type the map cannot insert. */
+    [[nodiscard]] std::optional<FreeSpaceTest::Scan> makeFreeSpaceScan(
+        const mrpt::obs::CObservation& obs, const mrpt::poses::CPose3D& robotPose,
+        FreeSpaceTest::ScanMaker& maker) const;
+    /** Adds a scan that makeFreeSpaceScan() made, in the scans' order. Throws
+     *  std::invalid_argument if it was made for another sensor model's layout. */
+    void addToFreeSpaceTest(FreeSpaceTest::Scan scan);
     /** The scans that judge a classified one (see FreeSpaceTest); serialized with the map. */
     [[nodiscard]] const FreeSpaceTest& freeSpaceTest() const { return free_space_; }
     /** Frees the buffers kept from one scan to the next (PillarGrid::releaseScanBuffers()):
