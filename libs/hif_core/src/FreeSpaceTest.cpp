@@ -128,18 +128,21 @@ auto anyPointIn(const uint8_t* blocks, int cols)
 }
 }  // namespace
 
-template <typename Fill>
-void FreeSpaceTest::addWith(uint64_t points_fingerprint, const Eigen::Isometry3d& sensor_to_world,
-                            const RangeImageLayout& layout, Fill fill)
+FreeSpaceTest::Scan FreeSpaceTest::scanHeader(uint64_t points_fingerprint,
+                                              const Eigen::Isometry3d& sensor_to_world,
+                                              const RangeImageLayout& layout, Image storage)
 {
     Scan s;
     s.fingerprint = withPose(points_fingerprint, sensor_to_world);
     s.sensor_to_world = sensor_to_world;
     s.layout = layout;
-    s.image = std::move(spare_);
-    spare_ = {};
-    fill(s.image);
-    scans_.push_back(std::move(s));
+    s.image = std::move(storage);
+    return s;
+}
+
+void FreeSpaceTest::keep(Scan scan)
+{
+    scans_.push_back(std::move(scan));
     dropBeyondCapacity();
 }
 
@@ -154,9 +157,8 @@ void FreeSpaceTest::addFromPoints(uint64_t points_fingerprint, const PointsView&
                                   const Eigen::Isometry3d& sensor_to_world,
                                   const RangeImageLayout& layout)
 {
-    scans_.push_back(maker_.makeWith(points_fingerprint, points, sensor_to_world, layout,
-                                     std::exchange(spare_, {})));
-    dropBeyondCapacity();
+    keep(maker_.makeWith(points_fingerprint, points, sensor_to_world, layout,
+                         std::exchange(spare_, {})));
 }
 
 FreeSpaceTest::Scan FreeSpaceTest::ScanMaker::make(const PointsView& points,
@@ -172,11 +174,7 @@ FreeSpaceTest::Scan FreeSpaceTest::ScanMaker::makeWith(uint64_t points_fingerpri
                                                        const RangeImageLayout& layout,
                                                        Image storage)
 {
-    Scan s;
-    s.fingerprint = withPose(points_fingerprint, sensor_to_world);
-    s.sensor_to_world = sensor_to_world;
-    s.layout = layout;
-    s.image = std::move(storage);
+    Scan s = scanHeader(points_fingerprint, sensor_to_world, layout, std::move(storage));
     detail::buildRangeImageCm(layout, points, dense_, blocks_);
     const auto cols = static_cast<std::size_t>(layout.cols);
     s.image.assignFrom(layout.rows, layout.cols, false, anyPointIn(blocks_.data(), layout.cols),
@@ -209,15 +207,11 @@ void FreeSpaceTest::add(const PointsView& points, const Eigen::Isometry3d& senso
     // the rows) where a point fell: only those are read.
     const auto rows = static_cast<std::size_t>(layout.rows);
     const detail::BeamReturn* cells = ws.range_image.data();
-    addWith(f, sensor_to_world, layout,
-            [&](Image& image)
-            {
-                image.assignFrom(layout.rows, layout.cols, true,
-                                 anyPointIn(ws.returned_blocks.data(), layout.cols),
-                                 [&](int r, int c) {
-                                     return cells[static_cast<std::size_t>(c) * rows + r].range_cm;
-                                 });
-            });
+    Scan s = scanHeader(f, sensor_to_world, layout, std::exchange(spare_, {}));
+    s.image.assignFrom(
+        layout.rows, layout.cols, true, anyPointIn(ws.returned_blocks.data(), layout.cols),
+        [&](int r, int c) { return cells[static_cast<std::size_t>(c) * rows + r].range_cm; });
+    keep(std::move(s));
 }
 
 void FreeSpaceTest::add(Scan scan)
@@ -228,8 +222,7 @@ void FreeSpaceTest::add(Scan scan)
             std::to_string(scan.image.cols()) + " cells for a layout of " +
             std::to_string(scan.layout.rows) + " x " + std::to_string(scan.layout.cols));
     if (capacity_ == 0) return;
-    scans_.push_back(std::move(scan));
-    dropBeyondCapacity();
+    keep(std::move(scan));
 }
 
 namespace

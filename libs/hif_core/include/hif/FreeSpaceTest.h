@@ -216,10 +216,12 @@ private:
     /** add(points, pose, layout) with the points' fingerprint found already. */
     void addFromPoints(uint64_t points_fingerprint, const PointsView& points,
                        const Eigen::Isometry3d& sensor_to_world, const RangeImageLayout& layout);
-    /** Adds a scan whose image `fill(image)` assigns (it is the spare one, reused). */
-    template <typename Fill>
-    void addWith(uint64_t points_fingerprint, const Eigen::Isometry3d& sensor_to_world,
-                 const RangeImageLayout& layout, Fill fill);
+    /** A scan with the fingerprint of these points at this pose, and its layout; its image
+     *  (to be assigned) in the memory of `storage`. */
+    static Scan scanHeader(uint64_t points_fingerprint, const Eigen::Isometry3d& sensor_to_world,
+                           const RangeImageLayout& layout, Image storage);
+    /** Keeps `scan` as the newest, dropping the oldest beyond the capacity. */
+    void keep(Scan scan);
 
     std::size_t capacity_ = 0;
     std::deque<Scan> scans_;
