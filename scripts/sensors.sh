@@ -30,8 +30,8 @@ for app in hif-synthetic-kitti hif-clean hif-eval; do
   [ -x "$BIN/$app" ] || { echo "[sensors] $BIN/$app not built: run bash scripts/build.sh" >&2; exit 1; }
 done
 mkdir -p "$ROOT/runs"
-FURNITURE=0
-[ "${HIF_SENSORS_ROADSIDE:-0}" = 1 ] && FURNITURE=1
+FURNITURE=0  # the clips have street furniture: its classes' SA are printed too
+[[ " ${SCENE_FLAGS[*]} " == *" --roadside "* ]] && FURNITURE=1
 printf "%-8s %-9s %7s %7s %7s %7s %7s %7s" sensor scene SA DA AA car cyclist person
 [ $FURNITURE = 1 ] && printf " %7s %7s %7s" fence pole sign
 printf "\n"
