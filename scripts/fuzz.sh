@@ -21,19 +21,43 @@ echo "[fuzz] built in $(( $(date +%s) - start )) s"
 mkdir -p "$BUILD_DIR/artifacts"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
-for t in "${TARGETS[@]}"; do
-  corpus="$BUILD_DIR/corpus/$t"
+# One target per core at a time: each fuzzer is one process on one core.
+JOBS=${HIF_FUZZ_JOBS:-$(nproc)}
+run_target() {
+  local t=$1 corpus="$BUILD_DIR/corpus/$1"
   mkdir -p "$corpus"
-  echo "[fuzz] $t: ${SECONDS_EACH} s from tests/fuzz/corpus/$t"
   # Memory: a reader must refuse a size that its file cannot hold, not try to allocate it.
-  if ! "$BUILD_DIR/tests/fuzz/$t" "$corpus" "tests/fuzz/corpus/$t" \
-      -max_total_time="$SECONDS_EACH" -rss_limit_mb=2048 -malloc_limit_mb=1024 -timeout=20 \
-      -max_len=16384 -print_final_stats=1 -artifact_prefix="$BUILD_DIR/artifacts/$t-" \
-      > "$BUILD_DIR/$t.log" 2>&1; then
+  "$BUILD_DIR/tests/fuzz/$t" "$corpus" "tests/fuzz/corpus/$t" \
+    -max_total_time="$SECONDS_EACH" -rss_limit_mb=2048 -malloc_limit_mb=1024 -timeout=20 \
+    -max_len=16384 -print_final_stats=1 -artifact_prefix="$BUILD_DIR/artifacts/$t-" \
+    > "$BUILD_DIR/$t.log" 2>&1
+}
+# Reports target t (its run's exit code in $2): its executions, or its log and the input that
+# failed it.
+report() {
+  local t=$1 rc=$2
+  if [ "$rc" -ne 0 ]; then
     tail -60 "$BUILD_DIR/$t.log"
     echo "[fuzz] $t FAILED: input in $BUILD_DIR/artifacts/ (run $BUILD_DIR/tests/fuzz/$t <file>)"
-    exit 1
+    return 1
   fi
+  local runs
   runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$BUILD_DIR/$t.log" | grep -o '[0-9]*$')
-  echo "[fuzz] $t: $runs executions in ${SECONDS_EACH} s, no crash; corpus $(ls "$corpus" | wc -l) inputs"
+  echo "[fuzz] $t: $runs executions in ${SECONDS_EACH} s, no crash; corpus $(ls "$BUILD_DIR/corpus/$t" | wc -l) inputs"
+}
+failed=0
+for ((i = 0; i < ${#TARGETS[@]}; i += JOBS)); do
+  batch=("${TARGETS[@]:i:JOBS}")
+  pids=()
+  for t in "${batch[@]}"; do
+    echo "[fuzz] $t: ${SECONDS_EACH} s from tests/fuzz/corpus/$t"
+    run_target "$t" &
+    pids+=($!)
+  done
+  for k in "${!batch[@]}"; do
+    rc=0
+    wait "${pids[$k]}" || rc=$?
+    report "${batch[$k]}" "$rc" || failed=1
+  done
+  [ "$failed" -eq 0 ] || exit 1
 done
