@@ -10,11 +10,15 @@
 #   bash scripts/sensors.sh -c share/hif/config/kitti-paper.ini  # extra hif-clean flags
 #
 # Environment: HIF_SENSORS (default: every sensor), HIF_SENSORS_SCENES (default "street walkers
-# cyclists traffic"), HIF_SENSORS_SCANS (default 10), HIF_SENSORS_SEED (default 1),
+# cyclists traffic"), HIF_SENSORS_SCANS (default 10), HIF_SENSORS_SEEDS (default 1; with
+# several, e.g. "1 2 3 4 5 6", a line per seed, "scene:seed", and the mean of each column over
+# them, "scene mean": one seed's scene places a few people and cars, and scores vary by tens of
+# points from seed to seed),
 # HIF_SENSORS_FOLIAGE (1: hif-synthetic-kitti --foliage, porous canopies, bushes and hedges),
 # HIF_SENSORS_ROADSIDE (1: --roadside, traffic signs, street lights and railings).
 # Work files go to ${HIF_SENSORS_DIR:-build/sensors, build/sensors-foliage with foliage,
-# -roadside with street furniture}/; clips are generated once and reused. With street furniture
+# -roadside with street furniture}/; clips are generated once per sensor, scene, number of scans
+# and seed (their folder names all four) and reused. With street furniture
 # each line also gives its SA per class (fence, pole, traffic-sign).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -25,7 +29,7 @@ ROOT=${HIF_SENSORS_DIR:-build/sensors$SUFFIX}
 SENSORS=${HIF_SENSORS:-hdl-64e hdl-32e vlp-16 os1-128 mid-70}
 SCENES=${HIF_SENSORS_SCENES:-street walkers cyclists traffic}
 SCANS=${HIF_SENSORS_SCANS:-10}
-SEED=${HIF_SENSORS_SEED:-1}
+SEEDS=${HIF_SENSORS_SEEDS:-1}
 for app in hif-synthetic-kitti hif-clean hif-eval; do
   [ -x "$BIN/$app" ] || { echo "[sensors] $BIN/$app not built: run bash scripts/build.sh" >&2; exit 1; }
 done
@@ -37,15 +41,33 @@ printf "%-8s %-9s %7s %7s %7s %7s %7s %7s" sensor scene SA DA AA car cyclist per
 printf "\n"
 for sensor in $SENSORS; do
   for scene in $SCENES; do
-    seq=$ROOT/clips/${sensor}_$scene
-    if [ ! -f "$seq/times.txt" ]; then
-      "$BIN/hif-synthetic-kitti" -o "$seq" --scene "$scene" --sensor "$sensor" --seed "$SEED" \
-        -n "$SCANS" "${SCENE_FLAGS[@]}" --overwrite > /dev/null 2>&1
+    lines=""
+    for seed in $SEEDS; do
+      name=${sensor}_${scene}_n${SCANS}_s$seed
+      seq=$ROOT/clips/$name
+      if [ ! -f "$seq/times.txt" ]; then
+        "$BIN/hif-synthetic-kitti" -o "$seq" --scene "$scene" --sensor "$sensor" --seed "$seed" \
+          -n "$SCANS" "${SCENE_FLAGS[@]}" --overwrite > /dev/null 2>&1
+      fi
+      out=$ROOT/runs/$name
+      "$BIN/hif-clean" -i "$seq" -o "$out" -q --overwrite --no-png "$@" > "$out.log" 2>&1 \
+        || { cat "$out.log" >&2; exit 1; }
+      "$BIN/hif-eval" --labels "$seq/labels" --predictions "$out/predictions" -q > "$out.eval"
+      label=$scene
+      [ "$(echo $SEEDS | wc -w)" -gt 1 ] && label=$scene:$seed
+      line=$(awk -v a="$sensor" -v b="$label" -v furniture=$FURNITURE -f scripts/score-line.awk "$out.eval")
+      echo "$line"
+      lines+="$line"$'\n'
+    done
+    # The mean of each column over the seeds ("-" where no seed has such points).
+    if [ "$(echo $SEEDS | wc -w)" -gt 1 ]; then
+      printf "%s" "$lines" | awk -v a="$sensor" -v b="$scene mean" '
+        { for (c = 3; c <= NF; ++c) if ($c != "-") { sum[c] += $c; n[c]++ }; nf = NF }
+        END {
+          printf "%-8s %-9s", a, b
+          for (c = 3; c <= nf; ++c) printf " %7s", n[c] ? sprintf("%.2f", sum[c] / n[c]) : "-"
+          printf "\n"
+        }'
     fi
-    out=$ROOT/runs/${sensor}_$scene
-    "$BIN/hif-clean" -i "$seq" -o "$out" -q --overwrite --no-png "$@" > "$out.log" 2>&1 \
-      || { cat "$out.log" >&2; exit 1; }
-    "$BIN/hif-eval" --labels "$seq/labels" --predictions "$out/predictions" -q > "$out.eval"
-    awk -v a="$sensor" -v b="$scene" -v furniture=$FURNITURE -f scripts/score-line.awk "$out.eval"
   done
 done

@@ -18,7 +18,8 @@
 # --foliage, porous canopies, bushes and hedges), HIF_WALKERS_ROADSIDE (1: --roadside, traffic
 # signs, street lights and railings); the same people either way.
 # Work files go to ${HIF_WALKERS_DIR:-build/<scene>, build/<scene>-foliage with foliage,
-# -roadside with street furniture}/; clips are generated once and reused.
+# -roadside with street furniture}/; clips are generated once per speed, seed and number of scans
+# (their folder names all three) and reused.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BIN=${HIF_BUILD_DIR:-build}/apps
@@ -41,7 +42,7 @@ for mode in $MODES; do
   mkdir -p "$all/labels" "$all/predictions" "$all/velodyne"
   for speed in $SPEEDS; do
     for seed in $SEEDS; do
-      clip=v${speed}_s${seed}
+      clip=v${speed}_s${seed}_n$SCANS
       seq=$ROOT/clips/$clip
       if [ ! -f "$seq/scans.rawlog" ]; then
         "$BIN/hif-synthetic-kitti" -o "$seq" --scene "$SCENE" --ego-speed "$speed" --seed "$seed" \
