@@ -292,25 +292,46 @@ struct ColumnPlaces
     }
 };
 
-/** Whether scan `own` could not see below world point `p`, the lowest return of a pillar:
- *  in its column of `own`'s image, the nearest beam below it (up to one and a half beam
- *  spacings: three rows of half a spacing) returned in front of it by more than the margin,
- *  from a standing face, which the beam below that one met within 45 degrees of the vertical
- *  (a fence, a hedge, a parked car, a barrier between the lanes: what stands behind shows
- *  above it, its lower part and its ground out of sight). Ground returns its beams one after
- *  the other nearer and lower along the surface, flatter than that; a beam below that returned
- *  nothing says nothing. */
-bool groundHidden(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& margin)
+/** Whether scan `own` could not see below world point `p`, the lowest return of a pillar: in
+ *  its column of `own`'s image, the beams below it returned in front of it by more than the
+ *  margin, from something standing there. Either the nearest two (each within one and a half
+ *  beam spacings, three rows of half a spacing, of the one above) met a face within 45 degrees
+ *  of the vertical (a fence, a hedge, a parked car's side, a barrier between the lanes), or,
+ *  for a `p` on a surface that faces the beams (facesBeams(): a head, a car's side; not ground
+ *  or foliage), walking on down the column over the returns still in front of `p`, such faces
+ *  one under the other stand at least `face` (an object's height) tall below what the first
+ *  two met: a parked car's roof, its side under it, with a walker's head and shoulders over it.
+ *  What stands behind shows above it, its lower part and its ground out of sight. Ground
+ *  returns its beams one after the other nearer and lower along the surface, flatter than
+ *  that, and a kerb's face is lower than an object; a beam below that returned nothing says
+ *  nothing. */
+bool groundHidden(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& margin,
+                  double face)
 {
     const auto cell = cellOf(own, p);
     if (!cell) return false;
-    float f1 = 0.0f, f2 = 0.0f;
+    const double in_front = cell->d - margin.at(cell->d);
+    float f1 = 0.0f, f = 0.0f;
     const int r1 = nextInColumn(own, cell->r, cell->c, -1, f1);
-    if (r1 < 0 || !(f1 < cell->d - margin.at(cell->d))) return false;
-    const int r2 = nextInColumn(own, r1, cell->c, -1, f2);
-    if (r2 < 0) return false;
+    if (r1 < 0 || !(f1 < in_front)) return false;
+    int r = nextInColumn(own, r1, cell->c, -1, f);
+    if (r < 0) return false;
     const ColumnPlaces column(own, p);
-    return ColumnPlaces::steep(column.at(r1, f1), column.at(r2, f2));
+    Eigen::Vector2d above = column.at(r, f);
+    if (ColumnPlaces::steep(column.at(r1, f1), above)) return true;
+    if (!facesBeams(own, *cell, margin)) return false;
+    bool in_face = false;
+    double face_top = 0.0;
+    while ((r = nextInColumn(own, r, cell->c, -1, f)) >= 0 && f < in_front)
+    {
+        const Eigen::Vector2d below = column.at(r, f);
+        const bool steep = ColumnPlaces::steep(above, below);
+        if (steep && !in_face) face_top = above.y();
+        in_face = steep;
+        if (in_face && face_top - below.y() >= face) return true;
+        above = below;
+    }
+    return false;
 }
 
 /** Whether world point `p`, the lowest return of a pillar, stands above ground out of sight of
@@ -1002,7 +1023,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     auto lowestHidden = [&](std::size_t p)
     {
         const Eigen::Vector3d lowest = lowestOf(p);
-        return groundHidden(ownJudge(), lowest, margin) || onFace(lowest);
+        return groundHidden(ownJudge(), lowest, margin, object.min_extent) || onFace(lowest);
     };
     // The ground of pillar p when its lowest return is part of what stands there (hidden).
     auto groundBelowLowest = [&](std::size_t p)
@@ -1037,7 +1058,8 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         if (!found.object && !any_dynamic && !tested.empty() && rings)
         {
             const Eigen::Vector3d lowest = lowestOf(p);
-            if (groundHidden(ownJudge(), lowest, margin) && facesBeams(ownJudge(), lowest, margin))
+            if (groundHidden(ownJudge(), lowest, margin, object.min_extent) &&
+                facesBeams(ownJudge(), lowest, margin))
             {
                 ObjectTest any_height = object;
                 any_height.min_extent = 0.0;
