@@ -1162,6 +1162,48 @@ TEST(FreeSpaceTest, WhatStandsBehindABarrierIsTestedDownToItsLowestRing)
     }
 }
 
+/** Ten scans, the sensor standing (`ego` 0) or moving along x, of the ground, a wall at x = 25
+ *  and a walker 1.75 m tall passing at 1.4 m/s along x from x = 11, 5-5.6 m to the right,
+ *  behind `obstacle` (its box's corners, `lo` and `hi`); cleaned with and without the test. */
+WithAndWithout walkerBehind(double ego, What obstacle, const Eigen::Vector3d& lo,
+                            const Eigen::Vector3d& hi)
+{
+    const std::vector<Scan> scans = movingSensorScans(
+        ego, 60.0,
+        [&](int i, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double& range)
+        {
+            What what = groundWallAndPerson(o, d, 25.0, std::nullopt, range);
+            auto take = [&](double s, What w)
+            {
+                if (s > 1e-6 && s < range) range = s, what = w;
+            };
+            const double x = 11.0 + 0.14 * i;
+            hitBox(o, d, lo, hi, obstacle, range, take);
+            hitBox(o, d, {x, -5.6, kGroundZ}, {x + 0.6, -5.0, kGroundZ + 1.75}, kPerson, range,
+                   take);
+            return what;
+        });
+    return withAndWithoutTheTest(scans);
+}
+
+/** walkerBehind()'s outcome: at least `min_pct` % of the walker's points (more than `min_n` of
+ *  them) removed, the ground as the map has it, and at most 1 % of the obstacle and of the wall
+ *  more than the map removes. */
+void expectTheWalkerGoes(const WithAndWithout& both, What obstacle, std::size_t min_n,
+                         double min_pct)
+{
+    const auto& [without, with] = both;
+    EXPECT_GT(with.n[kPerson], min_n);
+    EXPECT_GE(with.pct(kPerson), min_pct);
+    EXPECT_GT(with.n[kGround], 1000u);
+    EXPECT_EQ(with.removed[kGround], without.removed[kGround]);
+    for (const What w : {kWall, obstacle})
+    {
+        EXPECT_GT(with.n[w], 1000u);
+        EXPECT_LE(with.removed[w], without.removed[w] + with.n[w] / 100) << "kind " << int(w);
+    }
+}
+
 // A walker on the far side of a garden wall 1.4 m tall, 13 m away: only the head and shoulders
 // show above it, three or four rings 0.3 m tall, too little for an object on ground in sight.
 // But the scan cannot see below them (the beams below met the wall's face in front), and they
@@ -1171,81 +1213,32 @@ TEST(FreeSpaceTest, AWalkersHeadAboveAWallIsTestedWhateverHeightShows)
     for (const double ego : {0.0, 0.3})
     {
         SCOPED_TRACE("sensor moving " + std::to_string(ego) + " m per scan");
-        const std::vector<Scan> scans = movingSensorScans(
-            ego, 60.0,
-            [&](int i, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double& range)
-            {
-                What what = groundWallAndPerson(o, d, 25.0, std::nullopt, range);
-                auto take = [&](double s, What w)
-                {
-                    if (s > 1e-6 && s < range) range = s, what = w;
-                };
-                const double x = 11.0 + 0.14 * i;  // 1.4 m/s along the wall
-                hitBox(o, d, {6.0, -4.2, kGroundZ}, {20.0, -4.0, kGroundZ + 1.4}, kFence, range,
-                       take);
-                hitBox(o, d, {x, -5.6, kGroundZ}, {x + 0.6, -5.0, kGroundZ + 1.75}, kPerson, range,
-                       take);
-                return what;
-            });
-        const auto [without, with] = withAndWithoutTheTest(scans);
         // Measured, standing and moving: the map alone and the test without this rule 0 %,
-        // with it 100 %.
-        EXPECT_GT(with.n[kPerson], 500u);
-        EXPECT_GE(with.pct(kPerson), 90.0);
-        EXPECT_GT(with.n[kGround], 1000u);
-        EXPECT_EQ(with.removed[kGround], without.removed[kGround]);
-        // At most 1 % of the garden wall and of the wall behind more than the map removes. With
-        // the sensor moving, the garden wall's top beside the walker's pillar (a mover's
-        // neighbour, tested: step 5 of the free-space test in doc/algorithm.md), where the beams
-        // that reach the head skim it, 36 of 34,801 points; the wall 25 m away 14 points more
-        // than the map, with or without this rule.
-        for (const What w : {kWall, kFence})
-        {
-            EXPECT_GT(with.n[w], 1000u);
-            EXPECT_LE(with.removed[w], without.removed[w] + with.n[w] / 100) << "kind " << int(w);
-        }
+        // with it 100 %. With the sensor moving, the garden wall's top beside the walker's
+        // pillar (a mover's neighbour, tested: step 5 of the free-space test in
+        // doc/algorithm.md), where the beams that reach the head skim it, 36 of 34,801 points;
+        // the wall 25 m away 14 points more than the map, with or without this rule.
+        expectTheWalkerGoes(
+            walkerBehind(ego, kFence, {6.0, -4.2, kGroundZ}, {20.0, -4.0, kGroundZ + 1.4}), kFence,
+            500, 90.0);
     }
 }
 
-// A walker on the sidewalk behind a row of parked cars 1.3 m tall, 11-13 m away: the head and
-// shoulders show over the cars' roofs, 0.45 m of them, too little for an object on ground in
-// sight. The beams just below them meet the roofs, which lie nearly level, and only under the
-// roofs the cars' sides stand: what hides the walker's lower part is found by walking on down
-// the scan's column to a face an object tall, under the roof. The top of what stands behind,
-// tested at any height; the cars, the ground and the wall stay as the map has them.
+// The same walker behind a row of parked cars 1.3 m tall and 1.8 m wide: the head and shoulders
+// show over the cars' roofs, 0.45 m of them. The beams just below them meet the roofs, which lie
+// nearly level, and only under the roofs the cars' sides stand: what hides the walker's lower
+// part is found by walking on down the scan's column to a face an object tall, under the roof.
+// The cars, the ground and the wall stay as the map has them.
 TEST(FreeSpaceTest, AWalkersHeadOverParkedCarsRoofsIsTestedWhateverHeightShows)
 {
     for (const double ego : {0.0, 0.3})
     {
         SCOPED_TRACE("sensor moving " + std::to_string(ego) + " m per scan");
-        const std::vector<Scan> scans = movingSensorScans(
-            ego, 60.0,
-            [&](int i, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double& range)
-            {
-                What what = groundWallAndPerson(o, d, 25.0, std::nullopt, range);
-                auto take = [&](double s, What w)
-                {
-                    if (s > 1e-6 && s < range) range = s, what = w;
-                };
-                const double x = 11.0 + 0.14 * i;  // 1.4 m/s along the cars
-                hitBox(o, d, {4.0, -4.0, kGroundZ}, {22.0, -2.2, kGroundZ + 1.3}, kParked, range,
-                       take);
-                hitBox(o, d, {x, -5.6, kGroundZ}, {x + 0.6, -5.0, kGroundZ + 1.75}, kPerson, range,
-                       take);
-                return what;
-            });
-        const auto [without, with] = withAndWithoutTheTest(scans);
         // Measured, standing and moving: 9.5 and 10.6 % with the first two beams below asked
         // for a face (before 2026-12-06), 100 % now.
-        EXPECT_GT(with.n[kPerson], 300u);
-        EXPECT_GE(with.pct(kPerson), 80.0);
-        EXPECT_GT(with.n[kGround], 1000u);
-        EXPECT_EQ(with.removed[kGround], without.removed[kGround]);
-        for (const What w : {kWall, kParked})
-        {
-            EXPECT_GT(with.n[w], 1000u);
-            EXPECT_LE(with.removed[w], without.removed[w] + with.n[w] / 100) << "kind " << int(w);
-        }
+        expectTheWalkerGoes(
+            walkerBehind(ego, kParked, {4.0, -4.0, kGroundZ}, {22.0, -2.2, kGroundZ + 1.3}),
+            kParked, 300, 80.0);
     }
 }
 
