@@ -53,13 +53,7 @@ for seq in $SEQS; do
     done
     # The mean of each column over the phases ("-" where a phase has no such points).
     if [ "$k" != 1 ] && [ "$(echo "$phases" | wc -w)" -gt 1 ]; then
-      printf "%s" "$lines" | awk -v a="$seq" -v b="$((64 / k)) mean" '
-        { for (c = 3; c <= 8; ++c) if ($c != "-") { sum[c] += $c; n[c]++ } }
-        END {
-          printf "%-8s %-9s", a, b
-          for (c = 3; c <= 8; ++c) printf " %7s", n[c] ? sprintf("%.2f", sum[c] / n[c]) : "-"
-          printf "\n"
-        }'
+      printf "%s" "$lines" | awk -v a="$seq" -v b="$((64 / k)) mean" -f scripts/mean-line.awk
     fi
   done
 done

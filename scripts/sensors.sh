@@ -30,6 +30,8 @@ SENSORS=${HIF_SENSORS:-hdl-64e hdl-32e vlp-16 os1-128 mid-70}
 SCENES=${HIF_SENSORS_SCENES:-street walkers cyclists traffic}
 SCANS=${HIF_SENSORS_SCANS:-10}
 SEEDS=${HIF_SENSORS_SEEDS:-1}
+several=0  # more than one seed: each line labelled with its seed, then their mean
+[ "$(echo $SEEDS | wc -w)" -gt 1 ] && several=1
 for app in hif-synthetic-kitti hif-clean hif-eval; do
   [ -x "$BIN/$app" ] || { echo "[sensors] $BIN/$app not built: run bash scripts/build.sh" >&2; exit 1; }
 done
@@ -54,20 +56,14 @@ for sensor in $SENSORS; do
         || { cat "$out.log" >&2; exit 1; }
       "$BIN/hif-eval" --labels "$seq/labels" --predictions "$out/predictions" -q > "$out.eval"
       label=$scene
-      [ "$(echo $SEEDS | wc -w)" -gt 1 ] && label=$scene:$seed
+      [ $several = 1 ] && label=$scene:$seed
       line=$(awk -v a="$sensor" -v b="$label" -v furniture=$FURNITURE -f scripts/score-line.awk "$out.eval")
       echo "$line"
       lines+="$line"$'\n'
     done
     # The mean of each column over the seeds ("-" where no seed has such points).
-    if [ "$(echo $SEEDS | wc -w)" -gt 1 ]; then
-      printf "%s" "$lines" | awk -v a="$sensor" -v b="$scene mean" '
-        { for (c = 3; c <= NF; ++c) if ($c != "-") { sum[c] += $c; n[c]++ }; nf = NF }
-        END {
-          printf "%-8s %-9s", a, b
-          for (c = 3; c <= nf; ++c) printf " %7s", n[c] ? sprintf("%.2f", sum[c] / n[c]) : "-"
-          printf "\n"
-        }'
+    if [ $several = 1 ]; then
+      printf "%s" "$lines" | awk -v a="$sensor" -v b="$scene mean" -f scripts/mean-line.awk
     fi
   done
 done
