@@ -724,6 +724,22 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         const std::size_t settled_after = settledAt(judges.size() - self_pos, later, settlesSide);
         const BeamOffset at_after = settled_after ? at : BeamOffset{0.0, 0.0};
         if (gone) return Verdict::Gone;
+        // A surface that moved along the beams between the two judges that settled the sides,
+        // each seeing it within the margin of the point: the earlier one on one side of it, the
+        // later one on the other (nearer, then farther: it walked away; farther, then nearer: it
+        // came closer), the two apart by more than the margin. A person walking along the line
+        // of sight half a metre in the clip is occupied for every judge, yet no single surface
+        // stands both in front of and behind the point. A static surface's offsets scatter
+        // around the point by the noise, which the margin covers at each judge; one met at
+        // grazing incidence or foliage, where a beam a fraction of a cell off lands far along
+        // it, is left out: the point must lie on a surface that faces the beams (facesBeams()).
+        if (settled_before > 0 && settled_after > 0 && at_before.offset * at_after.offset < 0.0 &&
+            std::abs(at_after.offset - at_before.offset) >
+                std::max(at_before.margin, at_after.margin))
+        {
+            if (facing < 0) facing = facesBeams(ownJudge(), p_w, margin) ? 1 : 0;
+            if (facing == 1) return Verdict::Gone;
+        }
         // A surface that moved along the beams toward the sensor (a person walking along the
         // line of sight): walking out from the nearest judge in time, each one's beam toward
         // the point returned within the margin of where the previous one's did (the same
