@@ -724,15 +724,16 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         const std::size_t settled_after = settledAt(judges.size() - self_pos, later, settlesSide);
         const BeamOffset at_after = settled_after ? at : BeamOffset{0.0, 0.0};
         if (gone) return Verdict::Gone;
-        // A surface that moved along the beams between the two judges that settled the sides,
-        // each seeing it within the margin of the point: the earlier one on one side of it, the
-        // later one on the other (nearer, then farther: it walked away; farther, then nearer: it
-        // came closer), the two apart by more than the margin. A person walking along the line
-        // of sight half a metre in the clip is occupied for every judge, yet no single surface
-        // stands both in front of and behind the point. A static surface's offsets scatter
-        // around the point by the noise, which the margin covers at each judge; one met at
-        // grazing incidence or foliage, where a beam a fraction of a cell off lands far along
-        // it, is left out: the point must lie on a surface that faces the beams (facesBeams()).
+        // A surface that moved along the beams between the two judges that settled the sides:
+        // each saw it within the margin of the point, but the earlier one on one side of it and
+        // the later one on the other (nearer, then farther: it went away; farther, then nearer:
+        // it came closer), the two more than the margin apart. A person walking half a metre
+        // along the line of sight in a clip stays within the margin for every judge, yet is
+        // seen in front of the point from one side in time and behind it from the other. A
+        // static surface is seen around the point by the noise, which the margin covers at each
+        // judge; where a beam a fraction of a cell off the point's direction lands far along the
+        // surface (one met at grazing incidence, foliage), the offsets scatter as widely, so the
+        // point must lie on a surface that faces the beams (facesBeams()).
         if (settled_before > 0 && settled_after > 0 && at_before.offset * at_after.offset < 0.0 &&
             std::abs(at_after.offset - at_before.offset) >
                 std::max(at_before.margin, at_after.margin))
