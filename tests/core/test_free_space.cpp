@@ -709,19 +709,23 @@ TEST(FreeSpaceTest, AWalkerIsShownByItsLeadingEdgeWhicheverWayTheSweepGoes)
 // the person again, within the margin (0.6 m there) of the point, so "seen through" never
 // holds; but judge after judge the beam returns farther beyond the point, on the same surface.
 // The ground and the wall behind stay (their beams scatter around the point).
-/** Ten scans of a person 15 m ahead walking towards the sensor at `step` m per scan (along its
- *  line of sight), a wall behind, the sensor moving `ego` m per scan along x. */
-std::vector<Scan> radialWalkerScans(double ego, double step = 0.08)
+/** Ten scans of a person `start` m ahead (15.2 by default) walking towards the sensor at `step`
+ *  m per scan (away from it for a negative one) along its line of sight, a wall behind, the
+ *  sensor moving `ego` m per scan along x. With a `stride`, the person's front and the wall
+ *  swing that far back and forth from one scan to the next. */
+std::vector<Scan> radialWalkerScans(double ego, double step = 0.08, double start = 15.2,
+                                    double stride = 0.0)
 {
     return movingSensorScans(
         ego, 30.0,
         [&](int i, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double& range)
         {
-            const double x = 15.2 - step * i;
+            const double swing = (i % 2 == 0 ? 0.5 : -0.5) * stride;
+            const double x = start - step * i + swing;
             const std::pair<Eigen::Vector3d, Eigen::Vector3d> person{
                 Eigen::Vector3d(x - 0.2, 0.8, kGroundZ),
                 Eigen::Vector3d(x + 0.2, 1.2, kGroundZ + 1.7)};
-            return groundWallAndPerson(o, d, 25.5, person, range);
+            return groundWallAndPerson(o, d, 25.5 + swing, person, range);
         });
 }
 
@@ -775,22 +779,12 @@ TEST(FreeSpaceTest, ASlowWalkerIsShownWhereItsSurfaceFacesTheBeams)
 // as much but stays where it is stays.
 TEST(FreeSpaceTest, AWalkerSeenNearerBeforeAndFartherAfterIsShownWhateverItsStride)
 {
-    auto swing = [](int i) { return (i % 2 == 0 ? 1.0 : -1.0) * 0.06; };
-    for (const double step : {0.08, -0.08})
+    for (const double step : {-0.08, 0.08})  // away, then towards: 14.4 m away mid-clip
         for (const double ego : {0.0, 0.3})
         {
-            SCOPED_TRACE("walking " + std::to_string(step) + " m per scan, sensor moving " +
+            SCOPED_TRACE(std::string(step < 0.0 ? "away" : "towards") + ", sensor moving " +
                          std::to_string(ego) + " m per scan");
-            const std::vector<Scan> scans = movingSensorScans(
-                ego, 30.0,
-                [&](int i, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double& range)
-                {
-                    const double x = 14.4 + step * (i - 5) + swing(i);
-                    const std::pair<Eigen::Vector3d, Eigen::Vector3d> person{
-                        Eigen::Vector3d(x - 0.2, 0.8, kGroundZ),
-                        Eigen::Vector3d(x + 0.2, 1.2, kGroundZ + 1.7)};
-                    return groundWallAndPerson(o, d, 25.5 + swing(i), person, range);
-                });
+            const std::vector<Scan> scans = radialWalkerScans(ego, step, 14.4 + 5.0 * step, 0.12);
             const auto [without, with] = withAndWithoutTheTest(scans);
             EXPECT_GT(with.n[kPerson], 1000u);
             // Measured, away (towards), standing and moving: the map alone 13.8 and 12.3 % (18.5
