@@ -34,8 +34,9 @@ struct Cli
         "sensor's "
         "pose in the world for each, KITTI or TUM format), as LiDAR SLAM systems write them; "
         "clouds named by their time (1317022176.580342102.pcd, as a bag exported cloud by "
-        "cloud) take the pose of their time in a TUM trajectory; or hdl_graph_slam's saved "
-        "keyframes (NNNNNN/data and cloud.pcd)",
+        "cloud) take the pose of their time in a TUM trajectory; hdl_graph_slam's saved "
+        "keyframes (NNNNNN/data and cloud.pcd); or a rawlog without poses (as MRPT's "
+        "rosbag2rawlog writes one from a ROS bag) with --poses",
         true,
         "",
         "in.rawlog|in.simplemap|folder",
@@ -43,11 +44,13 @@ struct Cli
     TCLAP::ValueArg<std::string> poses{
         "",
         "poses",
-        "The trajectory of a folder of clouds (-i), when it is not the folder's poses.txt: "
-        "one line per cloud, the sensor's pose in the world, KITTI format (a 3x4 matrix, 12 "
-        "numbers) or TUM format (time x y z qx qy qz qw); e.g. KISS-ICP's *_poses_kitti.txt. "
-        "Clouds named by their time take the TUM pose of that time, or one interpolated "
-        "between the two around it (at most twice the trajectory's median spacing apart)",
+        "The trajectory of a folder of clouds (-i), when it is not the folder's poses.txt, or "
+        "of a rawlog without poses: one line per cloud, the sensor's pose in the world, KITTI "
+        "format (a 3x4 matrix, 12 numbers) or TUM format (time x y z qx qy qz qw); e.g. "
+        "KISS-ICP's *_poses_kitti.txt. Clouds named by their time, and a rawlog's scans with a "
+        "TUM trajectory, take the pose of their time, or one interpolated between the two "
+        "around it (at most twice the trajectory's median spacing apart; a rawlog's scans "
+        "without one are left out and counted)",
         false,
         "",
         "poses.txt",
@@ -61,7 +64,8 @@ struct Cli
     TCLAP::ValueArg<std::string> extrinsic{
         "",
         "extrinsic",
-        "With a folder of clouds: the LiDAR's pose in the frame of the trajectory's poses, when "
+        "With --poses or a folder's poses.txt: the LiDAR's pose in the frame of the "
+        "trajectory's poses, when "
         "they are another sensor's (the IMU of a LiDAR-inertial SLAM system such as FAST-LIO or "
         "LIO-SAM): \"x y z qx qy qz qw\" or the 3x4 matrix row by row (12 numbers); each "
         "scan is then at pose x extrinsic (default: the poses are the LiDAR's)",

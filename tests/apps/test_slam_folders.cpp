@@ -5,10 +5,18 @@
  *         (.pcd, PCL's compressed .pcd too, or .ply) with a KITTI- or TUM-format trajectory
  *         give the KITTI folder's classes, and so do clouds named by their time with a TUM
  *         trajectory, and clouds with an IMU's trajectory and the LiDAR's extrinsic;
- *         poses that do not belong to the scans are warned about; a single cloud is named.
+ *         poses that do not belong to the scans are warned about; a single cloud is named;
+ *         a rawlog without poses, as MRPT's rosbag2rawlog writes one from a ROS bag, takes a
+ *         trajectory's poses.
  */
 #include <gtest/gtest.h>
+#include <mrpt/io/CFileGZOutputStream.h>
+#include <mrpt/maps/CSimplePointsMap.h>
 #include <mrpt/obs/CObservation.h>
+#include <mrpt/obs/CObservationIMU.h>
+#include <mrpt/obs/CObservationPointCloud.h>
+#include <mrpt/obs/CObservationRobotPose.h>
+#include <mrpt/serialization/CArchive.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -603,6 +611,160 @@ TEST(SlamFolders, WrongFoldersAndTrajectoriesAreNamed)
                 "000002.pcd' has a VIEWPOINT other than the identity");
     // Nothing was written for any of them.
     for (int k = 1; k <= 10; ++k) EXPECT_FALSE(fs::exists(w + "/o" + std::to_string(k))) << k;
+}
+
+// MRPT's rosbag2rawlog turns a ROS bag's sensor_msgs/PointCloud2 messages into a rawlog of
+// CObservationPointCloud, each in the sensor's frame with the message's time and no pose (in
+// MRPT 2.5.8, points without their intensity, and beside them the bag's other sensors, an IMU
+// here). With the SLAM system's trajectory (--poses) its scans get the classes of the same
+// clouds as a folder: in the TUM format each at the pose of its time, in the KITTI format the
+// k-th at the k-th pose; scans outside the trajectory are left out and counted; a rawlog with
+// poses of its own, a scan without a time and too short a trajectory are named.
+TEST(SlamFolders, ARawlogWithoutPosesTakesATrajectorysPoses)
+{
+    const std::string dir = hif::test::kittiRoot() + "/sequences/04";
+    HIF_REQUIRE_KITTI_SEQUENCE(dir);
+    const WorkDir work = workDir("slam_rawlog_" + std::to_string(getpid()));
+    const std::string& w = work.path();
+    const hif::io::KittiSequence seq(dir);
+    constexpr std::size_t kScans = 10;
+    constexpr double kStart = 1317022176.0;  // the recording's clock
+    const auto stamp = [&](std::size_t i)
+    {
+        char name[64];
+        std::snprintf(name, sizeof name, "%.9f", kStart + seq.time(i));
+        return std::string(name);
+    };
+    // The rawlog (gzip, observations only) and, for reference, the same clouds as a folder of
+    // clouds named by their time and one named by their number.
+    fs::create_directories(w + "/timed");
+    fs::create_directories(w + "/numbered");
+    std::ofstream tum(w + "/trajectory.txt");
+    tum << std::setprecision(21);
+    std::vector<Eigen::Isometry3d> poses;
+    const auto writeRawlog = [&](const std::string& file, bool own_poses, bool times)
+    {
+        mrpt::io::CFileGZOutputStream f(file);
+        auto arch = mrpt::serialization::archiveFrom(f);
+        for (std::size_t i = 0; i < kScans; ++i)
+        {
+            const hif::io::Cloud c = seq.readScan(i);
+            auto points = mrpt::maps::CSimplePointsMap::Create();
+            for (std::size_t k = 0; k < c.size(); ++k) points->insertPoint(c.x[k], c.y[k], c.z[k]);
+            if (own_poses)
+            {
+                auto rp = mrpt::obs::CObservationRobotPose::Create();
+                rp->pose.mean = mrpt::poses::CPose3D::FromHomogeneousMatrix(seq.pose(i).matrix());
+                arch << *rp;
+            }
+            auto obs = mrpt::obs::CObservationPointCloud::Create();
+            obs->sensorLabel = "velodyne";
+            obs->pointcloud = points;
+            obs->timestamp =
+                times ? mrpt::Clock::fromDouble(kStart + seq.time(i)) : INVALID_TIMESTAMP;
+            arch << *obs;
+            auto imu = mrpt::obs::CObservationIMU::Create();
+            imu->timestamp = obs->timestamp;
+            arch << *imu;
+        }
+    };
+    writeRawlog(w + "/bag.rawlog", false, true);
+    for (std::size_t i = 0; i < kScans; ++i)
+    {
+        const hif::io::Cloud c = seq.readScan(i);
+        for (const std::string& name :
+             {w + "/timed/" + stamp(i) + ".pcd", w + "/numbered/" + hif::io::frameName(i) + ".pcd"})
+        {
+            hif::io::CloudWriter cw({name});
+            for (std::size_t k = 0; k < c.size(); ++k) cw.add(c.x[k], c.y[k], c.z[k], 0.0f);
+            cw.close();
+        }
+        poses.push_back(seq.pose(i));
+        const Eigen::Quaterniond q(poses[i].linear());
+        const Eigen::Vector3d& t = poses[i].translation();
+        tum << stamp(i) << ' ' << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x() << ' '
+            << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
+    }
+    tum.close();
+    writeKittiPoses(poses, w + "/kitti_format.txt");
+
+    // TUM: the poses of the scans' times.
+    Result r = clean(w + "/bag.rawlog", w + "/rawlog_out", w + "/trajectory.txt");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
+    r = clean(w + "/timed", w + "/timed_out", w + "/trajectory.txt");
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (std::size_t i = 0; i < kScans; ++i)
+        EXPECT_EQ(
+            hif::io::readLabels(w + "/rawlog_out/predictions/" + hif::io::frameName(i) + ".label"),
+            hif::io::readLabels(w + "/timed_out/predictions/" + stamp(i) + ".label"))
+            << i;
+    {
+        const auto summary = readJson(w + "/rawlog_out/summary.json");
+        EXPECT_EQ(summary["poses"]["trajectory"].get<std::string>(), w + "/trajectory.txt");
+        EXPECT_EQ(summary["scans_left_out"].get<std::size_t>(), 0u);
+        EXPECT_EQ(summary["skipped_objects"].get<std::size_t>(), kScans);  // the IMU's
+    }
+    // KITTI format: one pose a scan, in order.
+    r = clean(w + "/bag.rawlog", w + "/rawlog_kitti_out", w + "/kitti_format.txt");
+    ASSERT_EQ(r.code, 0) << r.output;
+    r = clean(w + "/numbered", w + "/numbered_out", w + "/kitti_format.txt");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(predictions(w + "/rawlog_kitti_out", kScans),
+              predictions(w + "/numbered_out", kScans));
+
+    // The trajectory starts after the first scan: that scan is left out, counted and said.
+    {
+        std::ifstream in(w + "/trajectory.txt");
+        std::ofstream out(w + "/late.txt");
+        std::string line;
+        std::getline(in, line);  // the first pose
+        for (; std::getline(in, line);) out << line << '\n';
+    }
+    r = clean(w + "/bag.rawlog", w + "/late_out", w + "/late.txt");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("warning: 1 of the " + std::to_string(kScans) + " scans of rawlog '" +
+                            w + "/bag.rawlog' have no pose in '" + w + "/late.txt'"),
+              std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(w + "/late_out/predictions/000000.label"));
+    EXPECT_EQ(hif::io::readLabels(w + "/late_out/predictions/000001.label").size(),
+              seq.readScan(1).size());
+    EXPECT_EQ(readJson(w + "/late_out/summary.json")["scans_left_out"].get<std::size_t>(), 1u);
+
+    // What does not go together.
+    {
+        std::ofstream(w + "/before.txt") << "1000 0 0 0 0 0 0 1\n1001 0 0 0 0 0 0 1\n";
+        std::ofstream(w + "/two.txt") << "1 0 0 0 0 1 0 0 0 0 1 0\n1 0 0 0 0 1 0 0 0 0 1 0\n";
+    }
+    expectError(clean(w + "/bag.rawlog", w + "/o1", w + "/before.txt"),
+                "none of the scans has a pose: " + std::to_string(kScans) + " of the " +
+                    std::to_string(kScans) + " scans of rawlog");
+    expectError(clean(w + "/bag.rawlog", w + "/o2", w + "/two.txt"),
+                "has 2 poses, and rawlog '" + w + "/bag.rawlog' more scans: scan 2 has none");
+    writeRawlog(w + "/posed.rawlog", true, true);
+    expectError(clean(w + "/posed.rawlog", w + "/o3", w + "/trajectory.txt"),
+                "rawlog '" + w +
+                    "/posed.rawlog' holds its own poses (a CObservationRobotPose "
+                    "before scan 0)");
+    writeRawlog(w + "/untimed.rawlog", false, false);
+    expectError(clean(w + "/untimed.rawlog", w + "/o4", w + "/trajectory.txt"),
+                "rawlog '" + w + "/untimed.rawlog': scan 0 has no time, which the poses of '" + w +
+                    "/trajectory.txt' (TUM format: time x y z qx qy qz qw) are found by");
+    expectError(hif::test::clean(w + "/bag.rawlog", w + "/o5",
+                                 [&](hif::jobs::CleanOptions& o)
+                                 {
+                                     o.poses = w + "/trajectory.txt";
+                                     o.world_frame = true;
+                                 }),
+                "--world-frame goes with a folder of clouds, and '" + w + "/bag.rawlog' is a file");
+    expectError(
+        hif::test::clean(w + "/bag.rawlog", w + "/o6",
+                         [&](hif::jobs::CleanOptions& o) { o.extrinsic = "0 0 0 0 0 0 1"; }),
+        "for a rawlog (" + w + "/bag.rawlog) it goes with --poses");
+    // Without --poses it is what it was: a rawlog whose scans have no pose.
+    expectError(clean(w + "/bag.rawlog", w + "/o7"), "scan 0 has no pose before it");
+    for (int k = 1; k <= 7; ++k) EXPECT_FALSE(fs::exists(w + "/o" + std::to_string(k))) << k;
 }
 
 // An organized cloud (Ouster's, Hesai's) holds 0 0 0 where a beam returned nothing: such a

@@ -457,6 +457,8 @@ CleanResult Clean::run(std::ostream& log) const
     info.online = run.online;
     info.held_scans = run.hold_scans;
     info.skipped_objects = run.source->skippedObjects();
+    const auto left_out = run.source->leftOutScans();
+    info.scans_left_out = left_out.scans;
     info.picture = picture;
     info.sensor = run.sensor;
     info.poses = &run.pose_check;
@@ -479,6 +481,7 @@ CleanResult Clean::run(std::ostream& log) const
     if (o.scene) extra.emplace_back("map.3Dscene");
     printReport(log, Clean::kTag, run.out_dir, format, run.dm_output, run.online, *run.hif_map, out,
                 t, extra);
+    if (left_out.scans > 0) log << Clean::kTag << " warning: " << left_out.why << "\n";
     if (out.drawsPicture() && !picture)
         log << Clean::kTag << " map.png not drawn: no point could be drawn\n";
     if (picture && picture->points_outside > 0)

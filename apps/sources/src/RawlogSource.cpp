@@ -2,7 +2,8 @@
 /**
  * @file   RawlogSource.cpp
  * @brief  Scans of an MRPT rawlog: observations, each scan after its CObservationRobotPose, or
- *         sensory frames.
+ *         sensory frames; or, for a rawlog without poses (as MRPT's rosbag2rawlog writes one
+ *         from a ROS bag), each scan at the pose a trajectory file gives for it.
  */
 #include <mrpt/io/CFileGZInputStream.h>
 #include <mrpt/obs/CObservationComment.h>
@@ -12,11 +13,14 @@
 #include <mrpt/serialization/CArchive.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cstdio>
 #include <stdexcept>
 
 #include "hif/apps/Cli.h"
 #include "hif/apps/FrameComment.h"
 #include "hif/apps/ScanSource.h"
+#include "hif/io/Trajectory.h"
 
 namespace hif::apps
 {
@@ -25,16 +29,24 @@ namespace
 class RawlogSource : public ScanSource
 {
 public:
-    RawlogSource(std::string file, bool poses_required)
+    RawlogSource(std::string file, bool poses_required, const FolderPoses& poses = {})
         : file_(std::move(file)), poses_required_(poses_required)
     {
+        if (!poses.trajectory.empty())
+        {
+            trajectory_file_ = poses.trajectory;
+            trajectory_ = io::readTrajectory(poses.trajectory);
+            extrinsic_ = poses.extrinsic;
+            max_gap_ = 2.0 * io::medianSpacing(trajectory_);
+        }
         open();
     }
 
     bool next(Scan& out) override
     {
         using namespace mrpt::obs;
-        if (frame_scans_.next(out)) return counted(true, out);
+        while (frame_scans_.next(out))
+            if (placed(out)) return counted(true, out);
         auto arch = mrpt::serialization::archiveFrom(*in_);
         for (;;)
         {
@@ -45,6 +57,8 @@ public:
             }
             catch (const mrpt::serialization::CExceptionEOF&)
             {
+                if (scans_read_ == 0 && left_out_ > 0)
+                    throw std::runtime_error("none of the scans has a pose: " + leftOutScans().why);
                 return false;
             }
             catch (const std::exception& e)
@@ -66,6 +80,7 @@ public:
             if (obj && IS_CLASS(*obj, CObservationOdometry)) continue;
             if (auto rp = std::dynamic_pointer_cast<CObservationRobotPose>(obj))
             {
+                if (!trajectory_file_.empty()) throwOwnPoses();
                 pose_ = rp->pose.mean;
                 have_pose_ = true;
                 continue;
@@ -78,12 +93,14 @@ public:
                 const auto first_pose = std::find_if(
                     sf->begin(), sf->end(),
                     [](const auto& o) { return o && IS_CLASS(*o, CObservationRobotPose); });
+                if (!trajectory_file_.empty() && first_pose != sf->end()) throwOwnPoses();
                 if (first_scan != sf->end() && !have_pose_ && first_pose > first_scan &&
-                    poses_required_)
+                    poses_required_ && trajectory_file_.empty())
                     throwNoPose();
                 frame_scans_.assign(*sf, have_pose_ ? pose_ : mrpt::poses::CPose3D(), have_pose_);
                 have_pose_ = false;
-                if (frame_scans_.next(out)) return counted(true, out);
+                while (frame_scans_.next(out))
+                    if (placed(out)) return counted(true, out);
                 continue;
             }
             auto obs = std::dynamic_pointer_cast<CObservation>(obj);
@@ -92,12 +109,12 @@ public:
                 ++skipped_;
                 continue;
             }
-            if (!have_pose_ && poses_required_) throwNoPose();
+            if (!have_pose_ && poses_required_ && trajectory_file_.empty()) throwNoPose();
             out = {obs, have_pose_ ? pose_ : mrpt::poses::CPose3D(), frame_, have_pose_,
                    std::nullopt};
             have_pose_ = false;  // every scan needs its own pose: never reuse a stale one
             frame_.reset();      // and its own number
-            return counted(true, out);
+            if (placed(out)) return counted(true, out);
         }
     }
 
@@ -107,11 +124,27 @@ public:
         frame_.reset();
         have_pose_ = false;
         scans_read_ = 0;
+        scans_seen_ = 0;
         skipped_ = 0;
+        left_out_ = 0;
         open();
     }
 
     [[nodiscard]] std::size_t skippedObjects() const override { return skipped_; }
+
+    [[nodiscard]] LeftOut leftOutScans() const override
+    {
+        const std::size_t n = left_out_.load();
+        if (n == 0) return {};
+        char span[160];
+        std::snprintf(span, sizeof span, "its poses run from %.6f to %.6f s, %.3f s apart (median)",
+                      trajectory_.times.front(), trajectory_.times.back(), 0.5 * max_gap_);
+        return {n, std::to_string(n) + " of the " + std::to_string(scans_seen_.load()) +
+                       " scans of rawlog '" + file_ + "' have no pose in '" + trajectory_file_ +
+                       "' (taken before its first pose, after its last, or in a gap of more "
+                       "than twice its spacing; " +
+                       span + "): left out, without predictions"};
+    }
 
 private:
     void open()
@@ -127,6 +160,53 @@ private:
                                 "rawlog '" + file_ + "', scan " + std::to_string(scans_read_));
         scans_read_ += got ? 1 : 0;
         return got;
+    }
+    /** With a trajectory, places scan `out` (the scans_seen_-th of the rawlog, from 0) at its
+     *  pose: that of its time (TUM format; io::poseAt(), interpolated within twice the
+     *  trajectory's median spacing), or the scan's line (KITTI format), times the extrinsic, its
+     *  number (for its outputs) its place in the rawlog. False for a scan whose time has no pose:
+     *  left out, and counted. Without a trajectory, every scan as the rawlog places it. */
+    bool placed(Scan& out)
+    {
+        const std::size_t k = scans_seen_++;
+        if (trajectory_file_.empty()) return true;
+        std::optional<Eigen::Isometry3d> pose;
+        if (trajectory_.times.empty())
+        {
+            if (k >= trajectory_.size())
+                throw std::runtime_error(
+                    "'" + trajectory_file_ + "' has " + std::to_string(trajectory_.size()) +
+                    " poses, and rawlog '" + file_ + "' more scans: scan " + std::to_string(k) +
+                    " has none (a trajectory in the KITTI format gives one pose a scan, in "
+                    "order; with times, the TUM format, each scan takes the pose of its time)");
+            pose = trajectory_.poses[k];
+        }
+        else
+        {
+            if (out.obs->timestamp == INVALID_TIMESTAMP)
+                throw std::runtime_error("rawlog '" + file_ + "': scan " + std::to_string(k) +
+                                         " has no time, which the poses of '" + trajectory_file_ +
+                                         "' (TUM format: time x y z qx qy qz qw) are found by");
+            pose = io::poseAt(trajectory_, mrpt::Clock::toDouble(out.obs->timestamp), max_gap_);
+            if (!pose)
+            {
+                ++left_out_;
+                return false;
+            }
+        }
+        const Eigen::Isometry3d lidar = extrinsic_ ? *pose * *extrinsic_ : *pose;
+        out.robot_pose = mrpt::poses::CPose3D::FromHomogeneousMatrix(lidar.matrix());
+        out.has_pose = true;
+        if (!out.frame) out.frame = k;
+        return true;
+    }
+    [[noreturn]] void throwOwnPoses() const
+    {
+        throw std::runtime_error(
+            "rawlog '" + file_ + "' holds its own poses (a CObservationRobotPose before scan " +
+            std::to_string(scans_seen_.load()) + "); --poses places the scans of a rawlog " +
+            "without them (as MRPT's rosbag2rawlog writes one): leave --poses out to use the " +
+            "rawlog's");
     }
     [[noreturn]] void throwNoPose() const
     {
@@ -145,12 +225,26 @@ private:
     bool have_pose_ = false;
     std::size_t scans_read_ = 0;
     std::size_t skipped_ = 0;
+    /** --poses: the trajectory the scans are placed at, instead of poses in the rawlog. */
+    std::string trajectory_file_;
+    io::Trajectory trajectory_;
+    std::optional<Eigen::Isometry3d> extrinsic_;
+    double max_gap_ = 0.0;
+    /** Scans of the rawlog met in this pass, and those left out for want of a pose (read on
+     *  the caller's thread while the reader's may write them: atomic). */
+    std::atomic<std::size_t> scans_seen_{0};
+    std::atomic<std::size_t> left_out_{0};
 };
 }  // namespace
 
 std::unique_ptr<ScanSource> openRawlog(const std::string& file, bool poses_required)
 {
     return std::make_unique<RawlogSource>(file, poses_required);
+}
+
+std::unique_ptr<ScanSource> openRawlogWithPoses(const std::string& file, const FolderPoses& poses)
+{
+    return std::make_unique<RawlogSource>(file, true, poses);
 }
 
 }  // namespace hif::apps

@@ -62,6 +62,13 @@ public:
         cv_.wait(lock, [this] { return !asked_ || done_; });
         return source_->skippedObjects();
     }
+    [[nodiscard]] LeftOut leftOutScans() const override
+    {
+        // Counted as the reader reads, as skippedObjects().
+        std::unique_lock<std::mutex> lock(mutex_);
+        cv_.wait(lock, [this] { return !asked_ || done_; });
+        return source_->leftOutScans();
+    }
     [[nodiscard]] bool isDynamicMapFolder() const override { return source_->isDynamicMapFolder(); }
     [[nodiscard]] std::vector<std::string> warnings() const override
     {

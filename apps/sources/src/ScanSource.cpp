@@ -34,7 +34,8 @@ const char* const kInputsRead =
     "hif-clean reads a sequence of scans with their poses: a KITTI sequence folder "
     "(velodyne/), a DynamicMap benchmark folder (pcd/), a folder of clouds in the sensor frame "
     "(NNNNNN.pcd, .ply or .bin) with poses.txt (KITTI or TUM format; or --poses FILE), "
-    "hdl_graph_slam's keyframes (NNNNNN/data and cloud.pcd), an MRPT rawlog or a .simplemap";
+    "hdl_graph_slam's keyframes (NNNNNN/data and cloud.pcd), an MRPT rawlog (with --poses if "
+    "it holds none) or a .simplemap";
 
 /** The poses of a folder of clouds: `poses` when given, else its poses.txt; empty if neither. */
 std::string posesOf(const fs::path& folder, const std::string& poses)
@@ -76,16 +77,30 @@ std::unique_ptr<ScanSource> openSource(const std::string& path, bool poses_requi
                                  kInputsRead);
     }
     if (!fs::exists(p)) throw std::runtime_error("input '" + path + "' does not exist");
-    if (*flag)
-        throw std::runtime_error(std::string(flag) + " goes with a folder of clouds, and '" + path +
-                                 "' is a file");
     const std::string ext = p.extension().string();
-    if (ext == ".pcd" || ext == ".ply" || ext == ".bin" || ext == ".las" || ext == ".laz")
+    const bool cloud =
+        ext == ".pcd" || ext == ".ply" || ext == ".bin" || ext == ".las" || ext == ".laz";
+    // A rawlog without poses takes a trajectory (--poses, and --extrinsic with it); a simple map
+    // holds its poses, and --world-frame is for clouds, which the source transforms.
+    if (poses.world_frame)
+        throw std::runtime_error("--world-frame goes with a folder of clouds, and '" + path +
+                                 "' is a file");
+    if (*flag && (cloud || ext == ".simplemap"))
+        throw std::runtime_error(
+            std::string(flag) + " goes with a folder of clouds or a rawlog without poses, and '" +
+            path + "' is " + (cloud ? "one point cloud" : "a simple map, which holds its poses"));
+    if (*flag && poses.trajectory.empty())
+        throw std::runtime_error(
+            "--extrinsic places the LiDAR in the frame of a trajectory, and "
+            "for a rawlog (" +
+            path + ") it goes with --poses");
+    if (cloud)
         throw std::runtime_error("'" + path + "' is one point cloud (" + ext.substr(1) +
                                  "), without a pose: moving objects are found by comparing "
                                  "scans taken at known poses. " +
                                  kInputsRead);
     if (ext == ".simplemap") return openSimpleMap(path);
+    if (!poses.trajectory.empty()) return openRawlogWithPoses(path, poses);
     return openRawlog(path, poses_required);
 }
 }  // namespace
@@ -93,8 +108,8 @@ std::unique_ptr<ScanSource> openSource(const std::string& path, bool poses_requi
 std::string folderTrajectory(const std::string& path, const std::string& poses)
 {
     const fs::path p(path);
-    if (!fs::is_directory(p) || fs::is_directory(p / "velodyne") || fs::is_directory(p / "pcd"))
-        return "";
+    if (!fs::is_directory(p)) return poses;
+    if (fs::is_directory(p / "velodyne") || fs::is_directory(p / "pcd")) return "";
     return posesOf(p, poses);
 }
 
@@ -112,7 +127,10 @@ void describeInputs(const std::string& path, RunFiles& files, const std::string&
         files.input(posesOf(p, poses), "the poses of -i");
     }
     else
+    {
         files.input(path, "the input (-i)");
+        if (!poses.empty()) files.input(poses, "the poses of -i");
+    }
 }
 
 namespace

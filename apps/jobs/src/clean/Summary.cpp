@@ -77,6 +77,7 @@ void writeSummary(const std::string& file, const SummaryInfo& info,
     j["total_s"] = t.total_s;
     j["peak_rss_mb"] = hif::apps::peakRssMiB();
     j["skipped_objects"] = info.skipped_objects;
+    j["scans_left_out"] = info.scans_left_out;
     j["cloud_coordinates"] = out.doubleCoordinates() ? "float64" : "float32";
     if (info.picture)
         j["picture"] = {{"width", info.picture->width},

@@ -25,14 +25,17 @@ struct SensorReport
 struct SummaryInfo
 {
     std::string input, config;
-    /** A folder of clouds' trajectory file (empty for other inputs), the LiDAR's extrinsic in
-     *  it (--extrinsic) and whether the clouds were in the world frame (--world-frame). */
+    /** The trajectory file of a folder of clouds or a rawlog without poses (empty for other
+     *  inputs), the LiDAR's extrinsic in it (--extrinsic) and whether the clouds were in the
+     *  world frame (--world-frame). */
     std::string trajectory;
     std::optional<Eigen::Isometry3d> extrinsic;
     bool world_frame = false;
     bool online = false;
     bool held_scans = false;
     std::size_t skipped_objects = 0;
+    /** Scans left out for want of a pose (a rawlog's, outside its trajectory). */
+    std::size_t scans_left_out = 0;
     std::optional<hif::apps::TopView::Picture> picture;  ///< map.png, if drawn
     SensorReport sensor;
     const hif::apps::PoseCheck* poses = nullptr;  ///< the check of the poses, if run

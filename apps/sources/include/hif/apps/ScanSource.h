@@ -7,7 +7,7 @@
  *         calib.txt), a DynamicMap benchmark folder (pcd/NNNNNN.pcd in the world frame,
  *         sensor pose in VIEWPOINT), or a folder of clouds in the sensor frame (NNNNNN.pcd or
  *         .ply) with their poses (poses.txt, KITTI or TUM format), as LiDAR SLAM systems
- *         write them.
+ *         write them; a rawlog without poses (MRPT's rosbag2rawlog) with such a trajectory.
  */
 #pragma once
 
@@ -60,14 +60,23 @@ public:
     [[nodiscard]] virtual std::size_t knownSize() const { return 0; }
     /** Objects of the input that were neither poses nor scans (skipped). */
     [[nodiscard]] virtual std::size_t skippedObjects() const { return 0; }
+    /** Scans of the input left out in the pass read last, for want of a pose (a rawlog's scans
+     *  whose times its trajectory does not cover): how many, and a sentence that says which
+     *  and why (empty when none was). */
+    struct LeftOut
+    {
+        std::size_t scans = 0;
+        std::string why;
+    };
+    [[nodiscard]] virtual LeftOut leftOutScans() const { return {}; }
     /** True for a DynamicMap benchmark folder (whose result goes to <folder>/hif_output.pcd). */
     [[nodiscard]] virtual bool isDynamicMapFolder() const { return false; }
     /** What the source found odd but could read past (files it ignored), one line each. */
     [[nodiscard]] virtual std::vector<std::string> warnings() const { return {}; }
 };
 
-/** The trajectory file a folder of clouds `path` is read with (`poses`, else its poses.txt);
- *  empty for any other input. */
+/** The trajectory file `path` is read with: `poses` when given (a folder of clouds or a
+ *  rawlog), else a folder of clouds' poses.txt; empty for any other input. */
 [[nodiscard]] std::string folderTrajectory(const std::string& path, const std::string& poses);
 
 /** Adds to `files` what reading `path` (with `poses`, see openScanSource()) reads: a rawlog or
@@ -108,6 +117,14 @@ std::unique_ptr<ScanSource> openScanSource(const std::string& path, PrepareScan 
 /** With `poses_required` false, a scan without a CObservationRobotPose before it is handed out
  *  with has_pose false instead of being an error (SLAM estimates its own poses). */
 std::unique_ptr<ScanSource> openRawlog(const std::string& file, bool poses_required = true);
+/** A rawlog without poses (as MRPT's rosbag2rawlog writes one from a ROS bag), each scan at the
+ *  pose `poses.trajectory` gives it (hif::io::readTrajectory()): in the TUM format the pose of
+ *  the scan's time (hif::io::poseAt(), within twice the trajectory's median spacing; a scan
+ *  whose time has none is left out, leftOutScans()), in the KITTI format the k-th scan's the
+ *  k-th pose; times `poses.extrinsic` when given. Each scan's outputs take its place in the
+ *  rawlog for a number. Throws std::runtime_error naming the files when the rawlog holds poses
+ *  of its own, a scan has no time (TUM) or the trajectory too few poses (KITTI). */
+std::unique_ptr<ScanSource> openRawlogWithPoses(const std::string& file, const FolderPoses& poses);
 std::unique_ptr<ScanSource> openSimpleMap(const std::string& file);
 std::unique_ptr<ScanSource> openDynamicMapFolder(const std::string& folder);
 std::unique_ptr<ScanSource> openKittiFolder(const std::string& folder);
