@@ -34,6 +34,7 @@
 #include "job_runner.h"
 #include "kitti_fixture.h"
 #include "pcl_compressed.h"
+#include "ros_bag.h"
 
 namespace fs = std::filesystem;
 using hif::test::expectError;
@@ -88,6 +89,39 @@ std::vector<uint32_t> predictions(const std::string& dir, std::size_t scans)
     }
     return all;
 }
+
+/** The first `n` scans of `seq` as clouds named by their time (`start` plus the sequence's
+ *  time, "%.9f": stamp()) in `dir`, without their intensity (as rosbag2rawlog leaves them), and
+ *  the LiDAR's poses at those times as the TUM trajectory `tum`. */
+struct TimedClouds
+{
+    double start;
+    std::string stamp(const hif::io::KittiSequence& seq, std::size_t i) const
+    {
+        char name[64];
+        std::snprintf(name, sizeof name, "%.9f", start + seq.time(i));
+        return name;
+    }
+    void write(const hif::io::KittiSequence& seq, std::size_t n, const std::string& dir,
+               const std::string& tum) const
+    {
+        fs::create_directories(dir);
+        std::ofstream f(tum);
+        f << std::setprecision(21);
+        for (std::size_t i = 0; i < n; ++i)
+        {
+            const hif::io::Cloud c = seq.readScan(i);
+            hif::io::CloudWriter cw({dir + "/" + stamp(seq, i) + ".pcd"});
+            for (std::size_t k = 0; k < c.size(); ++k) cw.add(c.x[k], c.y[k], c.z[k], 0.0f);
+            cw.close();
+            const Eigen::Isometry3d pose = seq.pose(i);
+            const Eigen::Quaterniond q(pose.linear());
+            const Eigen::Vector3d& t = pose.translation();
+            f << stamp(seq, i) << ' ' << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x()
+              << ' ' << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
+        }
+    }
+};
 
 /** The cleaning of `input` into `out` (in process, no picture), at the poses of `poses` if
  *  given. */
@@ -254,27 +288,9 @@ TEST(SlamFolders, CloudsNamedByTheirTimeTakeTheTrajectorysPoseOfThatTime)
     const hif::io::KittiSequence seq(dir);
     const auto poses = lidarPoses(seq);
     constexpr double kStart = 1317022176.0;  // the recording's clock, not the sequence's
-    const auto stamp = [&](std::size_t i)
-    {
-        char name[64];
-        std::snprintf(name, sizeof name, "%.9f", kStart + seq.time(i));
-        return std::string(name);
-    };
-    fs::create_directories(w + "/bag");
-    std::ofstream tum(w + "/trajectory.txt");
-    tum << std::setprecision(21);
-    for (std::size_t i = 0; i < seq.size(); ++i)
-    {
-        const hif::io::Cloud c = seq.readScan(i);
-        hif::io::CloudWriter cw({w + "/bag/" + stamp(i) + ".pcd"});
-        for (std::size_t k = 0; k < c.size(); ++k) cw.add(c.x[k], c.y[k], c.z[k], c.intensity[k]);
-        cw.close();
-        const Eigen::Quaterniond q(poses[i].linear());
-        const Eigen::Vector3d& t = poses[i].translation();
-        tum << stamp(i) << ' ' << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x() << ' '
-            << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
-    }
-    tum.close();
+    const TimedClouds timed{kStart};
+    const auto stamp = [&](std::size_t i) { return timed.stamp(seq, i); };
+    timed.write(seq, seq.size(), w + "/bag", w + "/trajectory.txt");
 
     Result r = clean(w + "/bag", w + "/bag_out", w + "/trajectory.txt");
     ASSERT_EQ(r.code, 0) << r.output;
@@ -629,19 +645,10 @@ TEST(SlamFolders, ARawlogWithoutPosesTakesATrajectorysPoses)
     const hif::io::KittiSequence seq(dir);
     constexpr std::size_t kScans = 10;
     constexpr double kStart = 1317022176.0;  // the recording's clock
-    const auto stamp = [&](std::size_t i)
-    {
-        char name[64];
-        std::snprintf(name, sizeof name, "%.9f", kStart + seq.time(i));
-        return std::string(name);
-    };
+    const TimedClouds timed{kStart};
+    const auto stamp = [&](std::size_t i) { return timed.stamp(seq, i); };
     // The rawlog (gzip, observations only) and, for reference, the same clouds as a folder of
     // clouds named by their time and one named by their number.
-    fs::create_directories(w + "/timed");
-    fs::create_directories(w + "/numbered");
-    std::ofstream tum(w + "/trajectory.txt");
-    tum << std::setprecision(21);
-    std::vector<Eigen::Isometry3d> poses;
     const auto writeRawlog = [&](const std::string& file, bool own_poses, bool times)
     {
         mrpt::io::CFileGZOutputStream f(file);
@@ -669,23 +676,15 @@ TEST(SlamFolders, ARawlogWithoutPosesTakesATrajectorysPoses)
         }
     };
     writeRawlog(w + "/bag.rawlog", false, true);
+    timed.write(seq, kScans, w + "/timed", w + "/trajectory.txt");
+    std::vector<Eigen::Isometry3d> poses;
+    fs::create_directories(w + "/numbered");
     for (std::size_t i = 0; i < kScans; ++i)
     {
-        const hif::io::Cloud c = seq.readScan(i);
-        for (const std::string& name :
-             {w + "/timed/" + stamp(i) + ".pcd", w + "/numbered/" + hif::io::frameName(i) + ".pcd"})
-        {
-            hif::io::CloudWriter cw({name});
-            for (std::size_t k = 0; k < c.size(); ++k) cw.add(c.x[k], c.y[k], c.z[k], 0.0f);
-            cw.close();
-        }
+        fs::copy_file(w + "/timed/" + stamp(i) + ".pcd",
+                      w + "/numbered/" + hif::io::frameName(i) + ".pcd");
         poses.push_back(seq.pose(i));
-        const Eigen::Quaterniond q(poses[i].linear());
-        const Eigen::Vector3d& t = poses[i].translation();
-        tum << stamp(i) << ' ' << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.x() << ' '
-            << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
     }
-    tum.close();
     writeKittiPoses(poses, w + "/kitti_format.txt");
 
     // TUM: the poses of the scans' times.
@@ -765,6 +764,53 @@ TEST(SlamFolders, ARawlogWithoutPosesTakesATrajectorysPoses)
     // Without --poses it is what it was: a rawlog whose scans have no pose.
     expectError(clean(w + "/bag.rawlog", w + "/o7"), "scan 0 has no pose before it");
     for (int k = 1; k <= 7; ++k) EXPECT_FALSE(fs::exists(w + "/o" + std::to_string(k))) << k;
+}
+
+// The same through a real ROS 1 bag: the clouds recorded as a driver publishes them
+// (sensor_msgs/PointCloud2, x y z intensity), turned into a rawlog by MRPT's rosbag2rawlog
+// (Debian's mrpt-apps) and cleaned at the poses of the SLAM system's TUM trajectory: the
+// classes of the same clouds in a folder named by their time.
+TEST(SlamFolders, ARosBagThroughRosbag2rawlogGetsTheClassesOfItsClouds)
+{
+    const std::string dir = hif::test::kittiRoot() + "/sequences/04";
+    HIF_REQUIRE_KITTI_SEQUENCE(dir);
+    if (std::system("command -v rosbag2rawlog > /dev/null 2>&1") != 0)
+        GTEST_SKIP() << "rosbag2rawlog not installed (Debian package mrpt-apps; "
+                        "scripts/install-deps.sh)";
+    const WorkDir work = workDir("slam_rosbag_" + std::to_string(getpid()));
+    const std::string& w = work.path();
+    const hif::io::KittiSequence seq(dir);
+    constexpr std::size_t kScans = 10;
+    const TimedClouds timed{1317022176.0};
+    std::vector<hif::test::BagCloud> clouds;
+    for (std::size_t i = 0; i < kScans; ++i)
+    {
+        const hif::io::Cloud c = seq.readScan(i);
+        hif::test::BagCloud m{timed.start + seq.time(i), {}};
+        for (std::size_t k = 0; k < c.size(); ++k)
+            m.xyzi.insert(m.xyzi.end(), {c.x[k], c.y[k], c.z[k], c.intensity[k]});
+        clouds.push_back(std::move(m));
+    }
+    hif::test::writeRosBag(w + "/run.bag", "/velodyne_points", "velodyne", clouds);
+    std::ofstream(w + "/bag.yml") << "sensors:\n  lidar:\n    type: 'CObservationPointCloud'\n"
+                                     "    topic: '/velodyne_points'\n";
+    const std::string cmd = "rosbag2rawlog -c " + w + "/bag.yml -f map -o " + w + "/run.rawlog " +
+                            w + "/run.bag > " + w + "/rosbag2rawlog.log 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << hif::test::bytesOf(w + "/rosbag2rawlog.log");
+    timed.write(seq, kScans, w + "/timed", w + "/trajectory.txt");
+
+    Result r = clean(w + "/run.rawlog", w + "/rawlog_out", w + "/trajectory.txt");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("scans " + std::to_string(kScans) + ","), std::string::npos)
+        << r.output;
+    r = clean(w + "/timed", w + "/timed_out", w + "/trajectory.txt");
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (std::size_t i = 0; i < kScans; ++i)
+        EXPECT_EQ(
+            hif::io::readLabels(w + "/rawlog_out/predictions/" + hif::io::frameName(i) + ".label"),
+            hif::io::readLabels(w + "/timed_out/predictions/" + timed.stamp(seq, i) + ".label"))
+            << i;
 }
 
 // An organized cloud (Ouster's, Hesai's) holds 0 0 0 where a beam returned nothing: such a
