@@ -649,7 +649,8 @@ TEST(SlamFolders, ARawlogWithoutPosesTakesATrajectorysPoses)
     const auto stamp = [&](std::size_t i) { return timed.stamp(seq, i); };
     // The rawlog (gzip, observations only) and, for reference, the same clouds as a folder of
     // clouds named by their time and one named by their number.
-    const auto writeRawlog = [&](const std::string& file, bool own_poses, bool times)
+    const auto writeRawlog =
+        [&](const std::string& file, bool own_poses, bool times, bool two_lidars = false)
     {
         mrpt::io::CFileGZOutputStream f(file);
         auto arch = mrpt::serialization::archiveFrom(f);
@@ -665,7 +666,7 @@ TEST(SlamFolders, ARawlogWithoutPosesTakesATrajectorysPoses)
                 arch << *rp;
             }
             auto obs = mrpt::obs::CObservationPointCloud::Create();
-            obs->sensorLabel = "velodyne";
+            obs->sensorLabel = two_lidars && i % 2 == 1 ? "ouster" : "velodyne";
             obs->pointcloud = points;
             obs->timestamp =
                 times ? mrpt::Clock::fromDouble(kStart + seq.time(i)) : INVALID_TIMESTAMP;
@@ -761,9 +762,14 @@ TEST(SlamFolders, ARawlogWithoutPosesTakesATrajectorysPoses)
         hif::test::clean(w + "/bag.rawlog", w + "/o6",
                          [&](hif::jobs::CleanOptions& o) { o.extrinsic = "0 0 0 0 0 0 1"; }),
         "for a rawlog (" + w + "/bag.rawlog) it goes with --poses");
+    writeRawlog(w + "/two.rawlog", false, true, true);
+    expectError(clean(w + "/two.rawlog", w + "/o8", w + "/trajectory.txt"),
+                "rawlog '" + w +
+                    "/two.rawlog' holds scans of two sensors, 'velodyne' and "
+                    "'ouster' (scan 1), and the trajectory of --poses places one");
     // Without --poses it is what it was: a rawlog whose scans have no pose.
     expectError(clean(w + "/bag.rawlog", w + "/o7"), "scan 0 has no pose before it");
-    for (int k = 1; k <= 7; ++k) EXPECT_FALSE(fs::exists(w + "/o" + std::to_string(k))) << k;
+    for (int k = 1; k <= 8; ++k) EXPECT_FALSE(fs::exists(w + "/o" + std::to_string(k))) << k;
 }
 
 // The same through a real ROS 1 bag: the clouds recorded as a driver publishes them

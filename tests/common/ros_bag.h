@@ -66,8 +66,8 @@ inline std::string u64(uint64_t v)
 inline std::string rosTime(double t)
 {
     const auto sec = static_cast<uint32_t>(std::floor(t));
-    const auto nsec = static_cast<uint32_t>(
-        std::min<long long>(std::llround((t - sec) * 1e9), 999999999LL));
+    const auto nsec =
+        static_cast<uint32_t>(std::min<long long>(std::llround((t - sec) * 1e9), 999999999LL));
     Bytes x;
     x.u32(sec);
     x.u32(nsec);
@@ -98,8 +98,8 @@ inline std::string op(uint8_t code) { return std::string(1, static_cast<char>(co
 
 /** Writes `file`: the clouds (times increasing) as sensor_msgs/PointCloud2 messages on
  *  `topic`, in frame `frame`, fields x y z intensity (FLOAT32). */
-inline void writeRosBag(const std::string& file, const std::string& topic,
-                        const std::string& frame, const std::vector<BagCloud>& clouds)
+inline void writeRosBag(const std::string& file, const std::string& topic, const std::string& frame,
+                        const std::vector<BagCloud>& clouds)
 {
     using namespace bag_detail;
     if (clouds.empty()) throw std::invalid_argument("writeRosBag: no cloud");
@@ -134,8 +134,8 @@ inline void writeRosBag(const std::string& file, const std::string& topic,
             m.u8(7);       // FLOAT32
             m.u32(1);      // count
         }
-        m.u8(0);       // is_bigendian
-        m.u32(16);     // point_step
+        m.u8(0);        // is_bigendian
+        m.u32(16);      // point_step
         m.u32(16 * n);  // row_step
         std::string data(16 * static_cast<std::size_t>(n), '\0');
         std::memcpy(data.data(), c.xyzi.data(), data.size());
@@ -148,9 +148,10 @@ inline void writeRosBag(const std::string& file, const std::string& topic,
     const std::string magic = "#ROSBAG V2.0\n";
     constexpr std::size_t kHeaderRecord = 4096;  // padded, as rosbag writes it
     const uint64_t chunk_pos = magic.size() + kHeaderRecord;
-    std::string body = record(
-        {{"op", op(0x05)}, {"compression", "none"}, {"size", u32(static_cast<uint32_t>(chunk.size()))}},
-        chunk);
+    std::string body = record({{"op", op(0x05)},
+                               {"compression", "none"},
+                               {"size", u32(static_cast<uint32_t>(chunk.size()))}},
+                              chunk);
     body += record({{"op", op(0x04)},
                     {"ver", u32(1)},
                     {"conn", u32(0)},
@@ -168,8 +169,10 @@ inline void writeRosBag(const std::string& file, const std::string& topic,
                     {"end_time", rosTime(clouds.back().time)},
                     {"count", u32(1)}},
                    counts.b);
-    const std::string header = fields(
-        {{"op", op(0x03)}, {"index_pos", u64(index_pos)}, {"conn_count", u32(1)}, {"chunk_count", u32(1)}});
+    const std::string header = fields({{"op", op(0x03)},
+                                       {"index_pos", u64(index_pos)},
+                                       {"conn_count", u32(1)},
+                                       {"chunk_count", u32(1)}});
     Bytes head;
     head.str(header);
     head.str(std::string(kHeaderRecord - 8 - header.size(), ' '));

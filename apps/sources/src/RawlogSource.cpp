@@ -170,6 +170,15 @@ private:
     {
         const std::size_t k = scans_seen_++;
         if (trajectory_file_.empty()) return true;
+        // One trajectory places one sensor: a second LiDAR's scans (another topic of the bag)
+        // would be put where the first one was.
+        if (k == 0) sensor_label_ = out.obs->sensorLabel;
+        if (out.obs->sensorLabel != sensor_label_)
+            throw std::runtime_error(
+                "rawlog '" + file_ + "' holds scans of two sensors, '" + sensor_label_ + "' and '" +
+                out.obs->sensorLabel + "' (scan " + std::to_string(k) +
+                "), and the trajectory of --poses places one: convert one LiDAR's topic (for "
+                "rosbag2rawlog, one sensor in its .yml)");
         std::optional<Eigen::Isometry3d> pose;
         if (trajectory_.times.empty())
         {
@@ -230,6 +239,7 @@ private:
     io::Trajectory trajectory_;
     std::optional<Eigen::Isometry3d> extrinsic_;
     double max_gap_ = 0.0;
+    std::string sensor_label_;  ///< of the first scan: every one must be that sensor's
     /** Scans of the rawlog met in this pass, and those left out for want of a pose (read on
      *  the caller's thread while the reader's may write them: atomic). */
     std::atomic<std::size_t> scans_seen_{0};
