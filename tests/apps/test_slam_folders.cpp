@@ -123,6 +123,16 @@ struct TimedClouds
     }
 };
 
+/** Copies trajectory `from` to `to` without its first pose: a trajectory that starts late. */
+void withoutFirstPose(const std::string& from, const std::string& to)
+{
+    std::ifstream in(from);
+    std::ofstream out(to);
+    std::string line;
+    std::getline(in, line);
+    for (; std::getline(in, line);) out << line << '\n';
+}
+
 /** The cleaning of `input` into `out` (in process, no picture), at the poses of `poses` if
  *  given. */
 Result clean(const std::string& input, const std::string& out, const std::string& poses = "",
@@ -335,13 +345,7 @@ TEST(SlamFolders, CloudsNamedByTheirTimeTakeTheTrajectorysPoseOfThatTime)
             << i;
 
     // The trajectory starts after the first cloud: that cloud is left out, by name.
-    {
-        std::ifstream in(w + "/trajectory.txt");
-        std::ofstream out(w + "/late.txt");
-        std::string line;
-        std::getline(in, line);  // the first pose
-        for (; std::getline(in, line);) out << line << '\n';
-    }
+    withoutFirstPose(w + "/trajectory.txt", w + "/late.txt");
     r = clean(w + "/bag", w + "/late_out", w + "/late.txt");
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("1 of the " + std::to_string(seq.size()) + " clouds of '" + w +
@@ -714,13 +718,7 @@ TEST(SlamFolders, ARawlogWithoutPosesTakesATrajectorysPoses)
               predictions(w + "/numbered_out", kScans));
 
     // The trajectory starts after the first scan: that scan is left out, counted and said.
-    {
-        std::ifstream in(w + "/trajectory.txt");
-        std::ofstream out(w + "/late.txt");
-        std::string line;
-        std::getline(in, line);  // the first pose
-        for (; std::getline(in, line);) out << line << '\n';
-    }
+    withoutFirstPose(w + "/trajectory.txt", w + "/late.txt");
     r = clean(w + "/bag.rawlog", w + "/late_out", w + "/late.txt");
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("warning: 1 of the " + std::to_string(kScans) + " scans of rawlog '" +
