@@ -647,7 +647,7 @@ TEST(SlamFolders, ARawlogWithoutPosesTakesATrajectorysPoses)
     const WorkDir work = workDir("slam_rawlog_" + std::to_string(getpid()));
     const std::string& w = work.path();
     const hif::io::KittiSequence seq(dir);
-    constexpr std::size_t kScans = 10;
+    constexpr std::size_t kScans = 6;
     constexpr double kStart = 1317022176.0;  // the recording's clock
     const TimedClouds timed{kStart};
     const auto stamp = [&](std::size_t i) { return timed.stamp(seq, i); };
@@ -784,7 +784,7 @@ TEST(SlamFolders, ARosBagThroughRosbag2rawlogGetsTheClassesOfItsClouds)
     const WorkDir work = workDir("slam_rosbag_" + std::to_string(getpid()));
     const std::string& w = work.path();
     const hif::io::KittiSequence seq(dir);
-    constexpr std::size_t kScans = 10;
+    constexpr std::size_t kScans = 6;
     const TimedClouds timed{1317022176.0};
     std::vector<hif::test::BagCloud> clouds;
     for (std::size_t i = 0; i < kScans; ++i)
