@@ -451,7 +451,7 @@ CleanResult Clean::run(std::ostream& log) const
     SummaryInfo info;
     info.input = run.input;
     info.config = run.cfg_file;
-    info.trajectory = hif::apps::folderTrajectory(run.input, run.poses.trajectory);
+    info.trajectory = hif::apps::inputTrajectory(run.input, run.poses.trajectory);
     info.extrinsic = run.poses.extrinsic;
     info.world_frame = run.poses.world_frame;
     info.online = run.online;

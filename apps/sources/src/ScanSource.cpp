@@ -105,7 +105,7 @@ std::unique_ptr<ScanSource> openSource(const std::string& path, bool poses_requi
 }
 }  // namespace
 
-std::string folderTrajectory(const std::string& path, const std::string& poses)
+std::string inputTrajectory(const std::string& path, const std::string& poses)
 {
     const fs::path p(path);
     if (!fs::is_directory(p)) return poses;

@@ -77,7 +77,7 @@ public:
 
 /** The trajectory file `path` is read with: `poses` when given (a folder of clouds or a
  *  rawlog), else a folder of clouds' poses.txt; empty for any other input. */
-[[nodiscard]] std::string folderTrajectory(const std::string& path, const std::string& poses);
+[[nodiscard]] std::string inputTrajectory(const std::string& path, const std::string& poses);
 
 /** Adds to `files` what reading `path` (with `poses`, see openScanSource()) reads: a rawlog or
  *  simple map file, a KITTI folder's files, a DynamicMap folder's scans, or a folder's clouds and
