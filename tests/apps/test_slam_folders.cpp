@@ -815,6 +815,21 @@ TEST(SlamFolders, ARosBagThroughRosbag2rawlogGetsTheClassesOfItsClouds)
             hif::io::readLabels(w + "/rawlog_out/predictions/" + hif::io::frameName(i) + ".label"),
             hif::io::readLabels(w + "/timed_out/predictions/" + timed.stamp(seq, i) + ".label"))
             << i;
+    // Online too (a SLAM system's use): a class for every point of every scan.
+    r = hif::test::clean(w + "/run.rawlog", w + "/online_out",
+                         [&](hif::jobs::CleanOptions& o)
+                         {
+                             o.picture = false;
+                             o.poses = w + "/trajectory.txt";
+                             o.online = true;
+                         });
+    ASSERT_EQ(r.code, 0) << r.output;
+    for (std::size_t i = 0; i < kScans; ++i)
+        EXPECT_EQ(
+            hif::io::readLabels(w + "/online_out/predictions/" + hif::io::frameName(i) + ".label")
+                .size(),
+            seq.readScan(i).size())
+            << i;
 }
 
 // An organized cloud (Ouster's, Hesai's) holds 0 0 0 where a beam returned nothing: such a
