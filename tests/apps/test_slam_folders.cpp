@@ -773,7 +773,8 @@ TEST(SlamFolders, ARawlogWithoutPosesTakesATrajectorysPoses)
 // The same through a real ROS 1 bag: the clouds recorded as a driver publishes them
 // (sensor_msgs/PointCloud2, x y z intensity), turned into a rawlog by MRPT's rosbag2rawlog
 // (Debian's mrpt-apps) and cleaned at the poses of the SLAM system's TUM trajectory: the
-// classes of the same clouds in a folder named by their time.
+// classes of the same clouds in a folder named by their time. Without a trajectory,
+// hif-icp-slam's poses place them.
 TEST(SlamFolders, ARosBagThroughRosbag2rawlogGetsTheClassesOfItsClouds)
 {
     const std::string dir = hif::test::kittiRoot() + "/sequences/04";
@@ -815,6 +816,13 @@ TEST(SlamFolders, ARosBagThroughRosbag2rawlogGetsTheClassesOfItsClouds)
             hif::io::readLabels(w + "/rawlog_out/predictions/" + hif::io::frameName(i) + ".label"),
             hif::io::readLabels(w + "/timed_out/predictions/" + timed.stamp(seq, i) + ".label"))
             << i;
+    // Without a trajectory: hif-icp-slam tracks the rawlog, and its poses place the scans.
+    r = hif::test::icpSlam(w + "/run.rawlog", w + "/slam");
+    ASSERT_EQ(r.code, 0) << r.output;
+    r = clean(w + "/run.rawlog", w + "/tracked_out", w + "/slam/poses_kitti.txt");
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;  // the poses check passed
+    EXPECT_EQ(readJson(w + "/tracked_out/summary.json")["scans"].get<std::size_t>(), kScans);
     // Online too (a SLAM system's use): a class for every point of every scan.
     r = hif::test::clean(w + "/run.rawlog", w + "/online_out",
                          [&](hif::jobs::CleanOptions& o)
