@@ -14,7 +14,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cstdio>
 #include <stdexcept>
 
 #include "hif/apps/Cli.h"
@@ -37,7 +36,7 @@ public:
             trajectory_file_ = poses.trajectory;
             trajectory_ = io::readTrajectory(poses.trajectory);
             extrinsic_ = poses.extrinsic;
-            max_gap_ = 2.0 * io::medianSpacing(trajectory_);
+            max_gap_ = 2.0 * io::medianSpacing(trajectory_);  // as for clouds named by time
         }
         open();
     }
@@ -136,14 +135,11 @@ public:
     {
         const std::size_t n = left_out_.load();
         if (n == 0) return {};
-        char span[160];
-        std::snprintf(span, sizeof span, "its poses run from %.6f to %.6f s, %.3f s apart (median)",
-                      trajectory_.times.front(), trajectory_.times.back(), 0.5 * max_gap_);
         return {n, std::to_string(n) + " of the " + std::to_string(scans_seen_.load()) +
                        " scans of rawlog '" + file_ + "' have no pose in '" + trajectory_file_ +
                        "' (taken before its first pose, after its last, or in a gap of more "
                        "than twice its spacing; " +
-                       span + "): left out, without predictions"};
+                       io::describeTimes(trajectory_) + "): left out, without predictions"};
     }
 
 private:

@@ -57,16 +57,12 @@ public:
     [[nodiscard]] std::size_t knownSize() const override { return source_->knownSize(); }
     [[nodiscard]] std::size_t skippedObjects() const override
     {
-        // The reader counts as it reads: wait until it is idle.
-        std::unique_lock<std::mutex> lock(mutex_);
-        cv_.wait(lock, [this] { return !asked_ || done_; });
+        waitIdle();
         return source_->skippedObjects();
     }
     [[nodiscard]] LeftOut leftOutScans() const override
     {
-        // Counted as the reader reads, as skippedObjects().
-        std::unique_lock<std::mutex> lock(mutex_);
-        cv_.wait(lock, [this] { return !asked_ || done_; });
+        waitIdle();
         return source_->leftOutScans();
     }
     [[nodiscard]] bool isDynamicMapFolder() const override { return source_->isDynamicMapFolder(); }
@@ -95,6 +91,14 @@ private:
         asked_ = false;
         if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
         return std::exchange(result_, std::nullopt);
+    }
+
+    /** Waits until the reader is idle: it counts (skipped objects, scans left out) as it
+     *  reads. */
+    void waitIdle() const
+    {
+        std::unique_lock<std::mutex> lock(mutex_);
+        cv_.wait(lock, [this] { return !asked_ || done_; });
     }
 
     /** Waits for a read under way and forgets it (and what it may have thrown: the scan after

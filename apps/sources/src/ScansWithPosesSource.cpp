@@ -236,12 +236,10 @@ private:
             entries_.push_back(
                 {entries_.size(), file, lidarPose(*pose), time, fs::path(file).stem().string()});
         }
-        char span[256];
-        std::snprintf(span, sizeof span,
-                      "its poses run from %.6f to %.6f s, %.3f s apart (median), the clouds' from "
-                      "%.6f to %.6f s",
-                      trajectory.times.front(), trajectory.times.back(), spacing,
+        char clouds[96];
+        std::snprintf(clouds, sizeof clouds, ", the clouds' from %.6f to %.6f s",
                       files.front().first, files.back().first);
+        const std::string span = io::describeTimes(trajectory) + clouds;
         if (entries_.empty())
             throw std::runtime_error("none of the " + std::to_string(files.size()) +
                                      " clouds of '" + folder + "' has a pose in '" + poses_file +

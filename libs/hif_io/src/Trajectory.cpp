@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -149,6 +150,15 @@ double medianSpacing(const Trajectory& tr)
     const auto mid = gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2);
     std::nth_element(gaps.begin(), mid, gaps.end());
     return *mid;
+}
+
+std::string describeTimes(const Trajectory& tr)
+{
+    if (tr.times.empty()) return "it has no times";
+    char text[128];
+    std::snprintf(text, sizeof text, "its poses run from %.6f to %.6f s, %.3f s apart (median)",
+                  tr.times.front(), tr.times.back(), medianSpacing(tr));
+    return text;
 }
 
 }  // namespace hif::io

@@ -50,6 +50,10 @@ constexpr double kSameTime = 1e-4;
 /** The median time between consecutive poses of `tr` (0 for fewer than two, or no times). */
 [[nodiscard]] double medianSpacing(const Trajectory& tr);
 
+/** For messages about scans a TUM trajectory `tr` gives no pose: "its poses run from A to B s,
+ *  S s apart (median)" (times to the microsecond); "it has no times" for the KITTI format. */
+[[nodiscard]] std::string describeTimes(const Trajectory& tr);
+
 /** The LiDAR's pose in the frame a trajectory gives (another sensor's: the IMU of most
  *  LiDAR-inertial SLAM systems), from `text`: 7 numbers, x y z qx qy qz qw (a unit quaternion,
  *  the TUM order), or 12, the 3x4 matrix [R | t] row by row (a rigid motion). Throws
