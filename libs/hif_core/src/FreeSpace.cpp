@@ -694,12 +694,16 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         // a drift beyond the margin at no distance has its size (a slow walker 15 m away:
         // 0.3 m instead of 0.45). Asked once per point, only for such offsets.
         int facing = -1;  // not asked yet
+        auto facesTheBeams = [&]
+        {
+            if (facing < 0) facing = facesBeams(ownJudge(), p_w, margin) ? 1 : 0;
+            return facing == 1;
+        };
         auto driftSize = [&](double offset, double m)
         {
             if (std::abs(offset) > m - 0.5 * margin.base) return true;
             if (std::abs(offset) <= margin.base) return false;
-            if (facing < 0) facing = facesBeams(ownJudge(), p_w, margin) ? 1 : 0;
-            return facing == 1;
+            return facesTheBeams();
         };
         // Whether judge j settles this side: gone, or occupied (`at`: where its beam returned,
         // from the point, and the margin there).
@@ -736,11 +740,9 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         // point must lie on a surface that faces the beams (facesBeams()).
         if (settled_before > 0 && settled_after > 0 && at_before.offset * at_after.offset < 0.0 &&
             std::abs(at_after.offset - at_before.offset) >
-                std::max(at_before.margin, at_after.margin))
-        {
-            if (facing < 0) facing = facesBeams(ownJudge(), p_w, margin) ? 1 : 0;
-            if (facing == 1) return Verdict::Gone;
-        }
+                std::max(at_before.margin, at_after.margin) &&
+            facesTheBeams())
+            return Verdict::Gone;
         // A surface that moved along the beams toward the sensor (a person walking along the
         // line of sight): walking out from the nearest judge in time, each one's beam toward
         // the point returned within the margin of where the previous one's did (the same
