@@ -186,23 +186,26 @@ std::pair<hif::GridGeometry, hif::Params> shippedConfig(const std::string& file)
 std::pair<hif::GridGeometry, hif::Params> offlineConfig() { return shippedConfig("kitti.ini"); }
 
 /** Insertion with the offline configuration, read from share/hif/config/kitti.ini (see-through
- *  misses, p_empty_init 0.42, ground seen once; its free-space test is part of
- *  classification). The difference to BM_Insert is the cost of the see-through misses and the
- *  ground test. Arguments: threads, and ground 0 to turn the ground test off (its cost). */
+ *  misses, p_empty_init 0.42, ground seen once, surfaces at pillars' edges; its free-space test
+ *  is part of classification). The difference to BM_Insert is the cost of the see-through
+ *  misses, the ground test and the edges. Arguments: threads, ground 0 to turn the ground test
+ *  off and edge 0 the surfaces at pillars' edges (their costs). */
 void BM_InsertOfflineConfig(benchmark::State& state)
 {
     if (!haveScans(state)) return;
     auto [geometry, params] = offlineConfig();
     if (state.range(1) == 0) params.ground_max_slope_deg = 0.0;
+    if (state.range(2) == 0) params.pillar_edge_margin = 0.0;
     hif::PillarGrid g(geometry, params);
     g.setThreads(static_cast<std::size_t>(state.range(0)));
     insertInSequence(state, g);
 }
 BENCHMARK(BM_InsertOfflineConfig)
-    ->ArgNames({"threads", "ground"})
-    ->Args({1, 1})
-    ->Args({1, 0})
-    ->Args({2, 1})
+    ->ArgNames({"threads", "ground", "edge"})
+    ->Args({1, 1, 1})
+    ->Args({1, 0, 1})
+    ->Args({1, 1, 0})
+    ->Args({2, 1, 1})
     ->Unit(benchmark::kMillisecond);
 
 /** The steps of one insertion, each timed alone on the same scans and the same growing map:

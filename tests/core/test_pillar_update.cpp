@@ -6,9 +6,13 @@
  */
 #include <gtest/gtest.h>
 
+#include <map>
+#include <optional>
 #include <random>
+#include <set>
 
 #include "hif/PillarGrid.h"
+#include "hif/detail/InsertSteps.h"
 #include "hif/detail/PillarUpdate.h"
 
 using namespace hif;
@@ -1063,5 +1067,145 @@ TEST(GroundSeenOnce, AFloorThatRunsOnBothWaysIsKeptWhatStandsOnItIsNot)
     {
         EXPECT_FALSE(on[k]) << "probe " << k;
         EXPECT_FALSE(off[k]) << "probe " << k;
+    }
+}
+
+// A pole astride the edge between pillars (20, 0) and (20, 1), seen first from the side of
+// (20, 0) (its points there, 3 cm from the edge), then from the other side: its points all in
+// (20, 1), while the beams toward the centre of (20, 0) pass beside it at its heights. The half
+// in (20, 0) is still there; only the surface seen at the edge says so
+// (Params::pillar_edge_margin). Near a corner, the pillar across the corner takes it too.
+TEST(PillarEdge, APoleAstrideAnEdgeKeepsTheHalfTheScanSawOnlyAcrossTheEdge)
+{
+    struct Xy
+    {
+        float x, y;
+    };
+    // The pole seen at `first` twice, then at `later` (none: gone) four times; is it still
+    // static at `first`?
+    auto poleStaticAfter = [](double margin, Xy first, std::optional<Xy> later)
+    {
+        Params prm;
+        prm.sensor_from_scans = false;
+        prm.pillar_edge_margin = margin;
+        PillarGrid grid(GridGeometry(), prm);
+        const float ground = -1.7f;
+        auto pole = [](Xy at, std::vector<float>& x, std::vector<float>& y, std::vector<float>& z)
+        {
+            for (double h = -1.0; h <= 0.5; h += 0.05)
+            {
+                x.push_back(at.x);
+                y.push_back(at.y);
+                z.push_back(float(h));
+            }
+        };
+        for (int s = 0; s < 2; ++s)
+        {
+            std::vector<float> x{20.5f}, y{0.5f}, z{ground};
+            pole(first, x, y, z);
+            grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+        }
+        EXPECT_TRUE(grid.isStatic(first.x, first.y, -0.5));
+        for (int s = 0; s < 4; ++s)
+        {
+            std::vector<float> x{20.5f}, y{0.5f}, z{ground};  // (20, 0) is hit: its ground
+            if (later) pole(*later, x, y, z);
+            beamsToward(20.5, 0.5, -1.0, 0.5, 40.0, x, y, z);  // beside the pole, 20 m beyond
+            grid.insertScan({x.data(), y.data(), z.data(), x.size()});
+        }
+        EXPECT_TRUE(grid.isStatic(20.5, 0.5, ground));
+        return grid.isStatic(first.x, first.y, -0.5);
+    };
+    const Xy here{20.5f, 0.97f};
+    EXPECT_FALSE(poleStaticAfter(0.0, here, Xy{20.5f, 1.03f})) << "without the margin";
+    EXPECT_TRUE(poleStaticAfter(0.1, here, Xy{20.5f, 1.03f})) << "seen 3 cm past the edge";
+    EXPECT_FALSE(poleStaticAfter(0.1, here, Xy{20.5f, 1.15f})) << "a surface 0.15 m past it";
+    EXPECT_FALSE(poleStaticAfter(0.1, here, std::nullopt)) << "gone: nothing at the edge";
+    const Xy corner{20.97f, 0.97f};
+    EXPECT_FALSE(poleStaticAfter(0.0, corner, Xy{21.03f, 1.03f}));
+    EXPECT_TRUE(poleStaticAfter(0.1, corner, Xy{21.03f, 1.03f})) << "across the corner";
+}
+
+// The margin is a distance inside a pillar: under half of it, or every point would be near
+// two opposite edges.
+TEST(PillarEdge, TheMarginIsUnderHalfAPillar)
+{
+    Params prm;
+    prm.pillar_edge_margin = 0.5;
+    EXPECT_THROW(PillarGrid(GridGeometry(), prm), std::invalid_argument);
+    prm.pillar_edge_margin = 0.2;
+    GridGeometry small;
+    small.pillar_size = 0.4;
+    EXPECT_THROW(PillarGrid(small, prm), std::invalid_argument);
+    EXPECT_NO_THROW(PillarGrid(GridGeometry(), prm));
+    prm.pillar_edge_margin = -0.1;
+    EXPECT_THROW(PillarGrid(GridGeometry(), prm), std::invalid_argument);
+}
+
+// The heights each pillar takes from the points near its edges in the pillars beside it,
+// against a reference that checks every point: the same whether the scan's pillars are grouped
+// by the counting sort or, with a point millions of metres away, by the comparison sort.
+TEST(PillarEdge, EachPillarTakesTheCellsOfThePointsNearItsEdgesBesideIt)
+{
+    Params prm;
+    prm.sensor_from_scans = false;
+    prm.pillar_edge_margin = 0.1;
+    const PillarGrid grid(GridGeometry(), prm);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::vector<float> x, y, z;
+    for (int i = 0; i < 20000; ++i)
+    {
+        // Runs of three points in a cell of a pillar (repeats), some ending near an edge.
+        const double px = -6.0 + 12.0 * u(rng), py = -6.0 + 12.0 * u(rng), pz = 2.0 * u(rng);
+        for (int k = 0; k < 3; ++k)
+        {
+            x.push_back(float(px + 0.02 * k));
+            y.push_back(float(py));
+            z.push_back(float(pz));
+        }
+    }
+    // What the reference expects: per pillar of the scan, the distinct cells.
+    std::map<std::pair<int32_t, int32_t>, std::set<int32_t>> expected;
+    std::set<std::pair<int32_t, int32_t>> hit;
+    for (std::size_t i = 0; i < x.size(); ++i)
+        hit.insert({int32_t(std::floor(double(x[i]))), int32_t(std::floor(double(y[i])))});
+    for (std::size_t i = 0; i < x.size(); ++i)
+    {
+        const int32_t m = int32_t(std::floor(double(x[i]))), n = int32_t(std::floor(double(y[i])));
+        const double fu = double(x[i]) - m, fv = double(y[i]) - n;
+        const int dm = fu < 0.1 ? -1 : fu > 0.9 ? 1 : 0, dn = fv < 0.1 ? -1 : fv > 0.9 ? 1 : 0;
+        const int32_t cell = int32_t(std::floor(double(z[i]) * (1.0 / 0.05)));  // as the pass
+        for (const auto& [a, b] : {std::pair{dm, 0}, std::pair{0, dn}, std::pair{dm, dn}})
+            if ((a != 0 || b != 0) && hit.count({m + a, n + b}) &&
+                !(a != 0 && b != 0 && (dm == 0 || dn == 0)))
+                expected[{m + a, n + b}].insert(cell);
+    }
+    ASSERT_GT(expected.size(), 100u);
+    for (const bool far : {false, true})
+    {
+        std::vector<float> fx = x, fy = y, fz = z;
+        if (far)
+        {
+            fx.push_back(3.0e6f);
+            fy.push_back(-2.0e6f);
+            fz.push_back(1.0f);
+        }
+        ScanBuckets scan;
+        bucketPoints(grid, {fx.data(), fy.data(), fz.data(), fx.size()},
+                     Eigen::Isometry3d::Identity(), scan);
+        std::size_t with_cells = 0;
+        for (std::size_t p = 0; p < scan.pillarCount(); ++p)
+        {
+            const PillarIndex idx = unpackKey(scan.keys[p]);
+            std::set<int32_t> got;
+            for (uint32_t k = scan.edge_offsets[p]; k < scan.edge_offsets[p + 1]; ++k)
+                got.insert(scan.edge_cells[k]);
+            const auto it = expected.find({idx.m, idx.n});
+            EXPECT_EQ(got, it == expected.end() ? std::set<int32_t>() : it->second)
+                << "pillar (" << idx.m << ", " << idx.n << ")" << (far ? ", comparison sort" : "");
+            with_cells += !got.empty();
+        }
+        EXPECT_EQ(with_cells, expected.size());
     }
 }

@@ -29,12 +29,14 @@ struct AvxGuard
 };
 
 /** The offline configuration's additions on (see-through misses use the range image; the
- *  free-space test its own images). */
+ *  surfaces at pillars' edges the first pass's edge codes; the free-space test its own
+ *  images). */
 Params offlineParams()
 {
     Params p;
     p.p_empty_init = 0.42;
     p.see_through_range = 35.0;
+    p.pillar_edge_margin = 0.1;
     p.free_space_window = 10;
     return p;
 }

@@ -408,10 +408,11 @@ TEST(CHeightIntervalMapIni, ShippedKittiConfigsLoadTheDocumentedDefaults)
         const auto map = multi.mapByClass<CHeightIntervalMap>();
         ASSERT_TRUE(map) << name;
         // They differ from hif::Params() in what doc/algorithm.md measures: the see-through
-        // misses and the free-space test; offline, the mode, p_empty_init, ground seen once and
-        // a higher share for the test; online, a lower one; the DynamicMap layout, a minimum
-        // range too.
+        // misses, the surfaces at pillars' edges and the free-space test; offline, the mode,
+        // p_empty_init, ground seen once and a higher share for the test; online, a lower one;
+        // the DynamicMap layout, a minimum range too.
         hif::Params expected;
+        expected.pillar_edge_margin = 0.1;
         expected.free_space_window = 10;
         expected.free_space_fraction = 0.4;
         expected.see_through_range = 35.0;

@@ -12,6 +12,68 @@
 
 namespace hif::detail
 {
+namespace
+{
+/** The pillars beside a point's edges, for its edge code (EdgeBits): offsets (dm, dn), at most
+ *  three (two edges and the corner between them). */
+struct Beside
+{
+    int count = 0;
+    int dm[3] = {}, dn[3] = {};
+};
+constexpr Beside besideOf(int32_t code)
+{
+    Beside b;
+    const int dm = (code & kEdgeLowM) ? -1 : (code & kEdgeHighM) ? 1 : 0;
+    const int dn = (code & kEdgeLowN) ? -1 : (code & kEdgeHighN) ? 1 : 0;
+    if (dm != 0) b.dm[b.count++] = dm;
+    if (dn != 0) b.dn[b.count++] = dn;
+    if (dm != 0 && dn != 0)
+    {
+        b.dm[b.count] = dm;
+        b.dn[b.count++] = dn;
+    }
+    return b;
+}
+constexpr std::array<Beside, 16> kBeside = {besideOf(0),  besideOf(1),  besideOf(2),  besideOf(3),
+                                            besideOf(4),  besideOf(5),  besideOf(6),  besideOf(7),
+                                            besideOf(8),  besideOf(9),  besideOf(10), besideOf(11),
+                                            besideOf(12), besideOf(13), besideOf(14), besideOf(15)};
+
+/** The edge cells of `out` (ScanBuckets::edge_offsets, edge_cells) from its first v points
+ *  and their edge codes: each point near an edge gives its height cell to the pillar beside
+ *  it, when the scan hit that pillar (`pillarBeside(k, dm, dn)`: the index of the pillar at
+ *  (dm, dn) from point k's, or kNone). Counted, then placed. */
+template <typename PillarBeside>
+void bucketEdges(ScanBuckets& out, std::size_t v, PillarBeside&& pillarBeside)
+{
+    constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
+    const std::size_t np = out.pillarCount();
+    auto forEachBeside = [&](auto&& visit)
+    {
+        for (std::size_t k = 0; k < v; ++k)
+        {
+            const int32_t code = out.tmp_edge[k];
+            if (code == 0) continue;
+            const Beside& b = kBeside[static_cast<std::size_t>(code)];
+            for (int s = 0; s < b.count; ++s)
+            {
+                const uint32_t p = pillarBeside(k, b.dm[s], b.dn[s]);
+                if (p != kNone) visit(p, out.tmp_z[k]);
+            }
+        }
+    };
+    std::vector<uint32_t>& offsets = out.edge_offsets;
+    offsets.assign(np + 1, 0);
+    forEachBeside([&](uint32_t p, int32_t) { ++offsets[p + 1]; });
+    for (std::size_t p = 0; p < np; ++p) offsets[p + 1] += offsets[p];
+    std::vector<uint32_t>& next = out.tmp_counts;
+    next.assign(offsets.begin(), offsets.end() - 1);
+    out.edge_cells.resize(offsets[np]);
+    forEachBeside([&](uint32_t p, int32_t z) { out.edge_cells[next[p]++] = z; });
+}
+}  // namespace
+
 void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Isometry3d& T,
                   ScanBuckets& out, bool keep_index)
 {
@@ -21,6 +83,12 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
     out.tmp_m.resize(pts.size);
     out.tmp_n.resize(pts.size);
     out.tmp_z.resize(pts.size);
+    // Params::pillar_edge_margin: each point's edge code, for the edge cells.
+    const Params& prm = grid.params();
+    const bool edges = !keep_index && prm.miss_needs_beam && prm.pillar_edge_margin > 0.0;
+    if (edges) out.tmp_edge.resize(pts.size);
+    out.edge_offsets.clear();
+    out.edge_cells.clear();
     if (keep_index)
     {
         out.tmp_src.resize(pts.size);
@@ -33,9 +101,13 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
     // same; a chunk's first point is never a repeat), each compacted in place, then moved
     // together.
     constexpr std::size_t kChunk = 16384;
-    const ChunkOutput chunk_out{out.tmp_m.data(), out.tmp_n.data(), out.tmp_z.data(),
+    const ChunkOutput chunk_out{out.tmp_m.data(),
+                                out.tmp_n.data(),
+                                out.tmp_z.data(),
                                 keep_index ? out.tmp_src.data() : nullptr,
-                                keep_index ? out.repeats.data() : nullptr};
+                                keep_index ? out.repeats.data() : nullptr,
+                                edges ? out.tmp_edge.data() : nullptr,
+                                prm.pillar_edge_margin / grid.geometry().pillar_size};
     const std::size_t n_chunks = (pts.size + kChunk - 1) / kChunk;
     std::array<ChunkSummary, 64> small_chunks;  // up to 1M points without allocation
     std::vector<ChunkSummary> big_chunks(n_chunks > small_chunks.size() ? n_chunks : 0);
@@ -65,6 +137,7 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
             std::copy_n(out.tmp_z.begin() + from, ch.kept, out.tmp_z.begin() + v);
             if (keep_index)
                 std::copy_n(out.tmp_src.begin() + from, ch.kept, out.tmp_src.begin() + v);
+            if (edges) std::copy_n(out.tmp_edge.begin() + from, ch.kept, out.tmp_edge.begin() + v);
         }
         v += ch.kept;
         valid += ch.valid;
@@ -100,7 +173,11 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
 
     // Pass 2: group by pillar. Counting sort over the scan's bounding box of pillars when it
     // is small (always, for a LiDAR scan at 1 m pillars); else a comparison sort.
-    const int64_t width = int64_t{m_max} - m_min + 1, height = int64_t{n_max} - n_min + 1;
+    // With edges, one more pillar on each side, so that the pillars beside every point's
+    // have bins too.
+    const int64_t g = edges ? 1 : 0;
+    const int64_t m0 = int64_t{m_min} - g, n0 = int64_t{n_min} - g;
+    const int64_t width = int64_t{m_max} - m0 + 1 + g, height = int64_t{n_max} - n0 + 1 + g;
     constexpr int64_t kMaxBins = int64_t{1} << 22;
     if (width * height <= kMaxBins)
     {
@@ -113,8 +190,8 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
         counts.assign(bins, 0);
         for (std::size_t k = 0; k < v; ++k)
         {
-            const auto b = static_cast<uint32_t>(int64_t{out.tmp_m[k] - m_min} * height +
-                                                 (out.tmp_n[k] - n_min));
+            const auto b = static_cast<uint32_t>((int64_t{out.tmp_m[k]} - m0) * height +
+                                                 (int64_t{out.tmp_n[k]} - n0));
             bin[k] = b;
             ++counts[b];
         }
@@ -125,8 +202,8 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
             if (c == 0) continue;
             counts[b] = sum;
             out.keys.push_back(
-                packKey({static_cast<int32_t>(m_min + static_cast<int64_t>(b) / height),
-                         static_cast<int32_t>(n_min + static_cast<int64_t>(b) % height)}));
+                packKey({static_cast<int32_t>(m0 + static_cast<int64_t>(b) / height),
+                         static_cast<int32_t>(n0 + static_cast<int64_t>(b) % height)}));
             out.offsets.push_back(sum);
             sum += c;
         }
@@ -136,6 +213,22 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
             const uint32_t slot = counts[bin[k]]++;
             out.cells[slot] = out.tmp_z[k];
             if (keep_index) out.index[slot] = out.tmp_src[k];
+        }
+        if (edges)
+        {
+            // Each bin's pillar index (none: kNone), for the pillars beside the points.
+            std::vector<uint32_t>& pillar_of = out.tmp_pillar;
+            pillar_of.assign(bins, std::numeric_limits<uint32_t>::max());
+            for (std::size_t p = 0; p < out.keys.size(); ++p)
+            {
+                const PillarIndex idx = unpackKey(out.keys[p]);
+                pillar_of[static_cast<std::size_t>((int64_t{idx.m} - m0) * height +
+                                                   (int64_t{idx.n} - n0))] =
+                    static_cast<uint32_t>(p);
+            }
+            bucketEdges(out, v,
+                        [&](std::size_t k, int dm, int dn)
+                        { return pillar_of[static_cast<int64_t>(bin[k]) + dm * height + dn]; });
         }
     }
     else
@@ -159,6 +252,21 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
             if (keep_index) out.index[k] = out.tmp_src[src];
         }
         out.offsets.push_back(static_cast<uint32_t>(v));
+        if (edges)
+            bucketEdges(out, v,
+                        [&](std::size_t k, int dm, int dn)
+                        {
+                            const int64_t m = int64_t{out.tmp_m[k]} + dm;
+                            const int64_t n = int64_t{out.tmp_n[k]} + dn;
+                            if (m < m_min || m > m_max || n < n_min || n > n_max)
+                                return std::numeric_limits<uint32_t>::max();
+                            const uint64_t key =
+                                packKey({static_cast<int32_t>(m), static_cast<int32_t>(n)});
+                            const auto it = std::lower_bound(out.keys.begin(), out.keys.end(), key);
+                            return it != out.keys.end() && *it == key
+                                       ? static_cast<uint32_t>(it - out.keys.begin())
+                                       : std::numeric_limits<uint32_t>::max();
+                        });
     }
 }
 

@@ -19,6 +19,10 @@ void buildSpans(const PillarGrid& grid, ScanBuckets& scan)
     scan.ceilings.resize(np);
     scan.span_counts.resize(np);
     scan.spans.resize(scan.entryCount());
+    // Params::pillar_edge_margin: the surfaces seen at each pillar's edges, as spans too.
+    const bool edges = !scan.edge_offsets.empty();
+    scan.edge_span_counts.assign(edges ? np : 0, 0);
+    scan.edge_spans.resize(scan.edge_cells.size());
     const double res = geo.height_resolution;
     const bool need_ceiling = (prm.high_height_preservation || prm.unseen_height_prior) &&
                               std::isfinite(scan.top_slope_sq);
@@ -41,12 +45,21 @@ void buildSpans(const PillarGrid& grid, ScanBuckets& scan)
                       const double dx = geo.centreX(idx.m) - t.x();
                       const double dy = geo.centreY(idx.n) - t.y();
                       const double d = std::sqrt(dx * dx + dy * dy);
-                      // The gap between the beams that reach the pillar's middle height.
+                      // The gap between the beams that reach the pillar's middle height (the
+                      // edge spans take the same).
                       const double mid_z = (cells[distinct / 2] + 0.5) * res - t.z();
                       const IntervalWidths w =
                           IntervalWidths::of(grid, d, d > 0.0 ? mid_z / d : 0.0);
                       scan.span_counts[p] = static_cast<uint32_t>(
                           spansFromCells(cells, distinct, w.gap, w.pad, scan.spans.data() + b));
+                      if (edges && scan.edge_offsets[p + 1] > scan.edge_offsets[p])
+                      {
+                          const uint32_t eb = scan.edge_offsets[p];
+                          int32_t* edge_cells = scan.edge_cells.data() + eb;
+                          scan.edge_span_counts[p] = static_cast<uint32_t>(spansFromCells(
+                              edge_cells, sortDistinct(edge_cells, scan.edge_offsets[p + 1] - eb),
+                              w.gap, w.pad, scan.edge_spans.data() + eb));
+                      }
 
                       int32_t ceiling = kAllHeights;
                       if (need_ceiling)

@@ -23,6 +23,9 @@ void Params::validateWith(const GridGeometry& geometry) const
     // The see-through misses scan a window of pillars around the sensor.
     if (!(see_through_range <= 2000.0 * geometry.pillar_size))
         throwInvalid("hif::Params", "see_through_range", see_through_range, "<= 2000 pillar sizes");
+    if (!(pillar_edge_margin < 0.5 * geometry.pillar_size))
+        throwInvalid("hif::Params", "pillar_edge_margin", pillar_edge_margin,
+                     "< half the pillar size");
 }
 
 Params Params::paper()

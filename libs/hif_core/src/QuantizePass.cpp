@@ -67,9 +67,12 @@ struct QuantizeChunk
     double tx, ty, tz;
     double ox, oy, inv_xy, inv_z;
     double min_range2;  ///< squared minimum range (0: none)
+    /** Edge codes: a point whose offset in its pillar (a fraction of the pillar's size) is
+     *  below edge_lo or above edge_hi along an axis lies near that edge. */
+    double edge_lo, edge_hi;
 
     QuantizeChunk(const Eigen::Matrix3d& R, const Eigen::Vector3d& t, const GridGeometry& p,
-                  double min_range)
+                  double min_range, double edge_fraction)
         : r00(R(0, 0)),
           r01(R(0, 1)),
           r02(R(0, 2)),
@@ -86,17 +89,26 @@ struct QuantizeChunk
           oy(p.origin_y),
           inv_xy(1.0 / p.pillar_size),
           inv_z(1.0 / p.height_resolution),
-          min_range2(min_range * min_range)
+          min_range2(min_range * min_range),
+          edge_lo(edge_fraction),
+          edge_hi(1.0 - edge_fraction)
     {
+    }
+
+    /** The edge code (EdgeBits) of a point at offsets (u, v) in its pillar, in [0, 1). */
+    [[nodiscard]] int32_t edgeCode(double u, double v) const
+    {
+        return (u < edge_lo ? kEdgeLowM : 0) | (u > edge_hi ? kEdgeHighM : 0) |
+               (v < edge_lo ? kEdgeLowN : 0) | (v > edge_hi ? kEdgeHighN : 0);
     }
 
     static constexpr double kMinR2 = kMinRangeForElevation * kMinRangeForElevation;
 
     /** Points [i, i1), one at a time. */
-    template <bool kKeepIndex>
+    template <bool kKeepIndex, bool kEdges>
     void runScalar(const PointsView& pts, std::size_t i, std::size_t i1, int32_t* m_out,
                    int32_t* n_out, int32_t* z_out, uint32_t* src_out, uint8_t* repeats,
-                   PassState& st) const
+                   int32_t* e_out, PassState& st) const
     {
         for (; i < i1; ++i)
         {
@@ -123,16 +135,24 @@ struct QuantizeChunk
             st.n_hi = std::max(st.n_hi, fn);
             const double r2 = sx * sx + sy * sy;
             if (r2 > kMinR2) st.top = std::max(st.top, sz * std::abs(sz) / r2);
+            int32_t e = 0;
+            if constexpr (kEdges)
+                e = edgeCode(fm - static_cast<double>(m), fn - static_cast<double>(n));
             const bool repeat = st.have_prev && m == st.prev_m && n == st.prev_n && zc == st.prev_z;
             if constexpr (kKeepIndex) repeats[i] = repeat;
             st.have_prev = true;
             st.prev_m = m;
             st.prev_n = n;
             st.prev_z = zc;
-            if (repeat) continue;
+            if (repeat)
+            {
+                if constexpr (kEdges) e_out[st.v - 1] |= e;  // the stored point of its run
+                continue;
+            }
             m_out[st.v] = m;
             n_out[st.v] = n;
             z_out[st.v] = zc;
+            if constexpr (kEdges) e_out[st.v] = e;
             if constexpr (kKeepIndex) src_out[st.v] = static_cast<uint32_t>(i);
             ++st.v;
         }
@@ -142,12 +162,12 @@ struct QuantizeChunk
     /** Points [i0, i1) in groups of four; returns where it stopped (fewer than four left).
      *  Repeats are found by comparing each lane with the one before it, and the kept lanes
      *  are packed with one shuffle, without a branch per point. */
-    template <bool kKeepIndex>
+    template <bool kKeepIndex, bool kEdges>
     __attribute__((target("avx"))) std::size_t runAvx(const PointsView& pts, std::size_t i0,
                                                       std::size_t i1, int32_t* m_out,
                                                       int32_t* n_out, int32_t* z_out,
                                                       uint32_t* src_out, uint8_t* repeats,
-                                                      PassState& st) const
+                                                      int32_t* e_out, PassState& st) const
     {
         static const CompactTable table;
         const __m256d a00 = _mm256_set1_pd(r00), a01 = _mm256_set1_pd(r01),
@@ -170,6 +190,7 @@ struct QuantizeChunk
         // The previous point in lane 3 of these, and whether it is valid.
         __m128i prev_m = _mm_set1_epi32(st.prev_m), prev_n = _mm_set1_epi32(st.prev_n),
                 prev_z = _mm_set1_epi32(st.prev_z);
+        const __m256d vedge_lo = _mm256_set1_pd(edge_lo), vedge_hi = _mm256_set1_pd(edge_hi);
         unsigned prev_ok = st.have_prev ? 1u : 0u;
         const __m256d vmin_range2 = _mm256_set1_pd(min_range2);
         std::size_t v = st.v, valid = 0, near = 0, j = i0;
@@ -210,9 +231,26 @@ struct QuantizeChunk
             near += static_cast<std::size_t>(
                 __builtin_popcount(static_cast<unsigned>(_mm256_movemask_pd(nearm))));
             // Invalid lanes become 0 before the conversion.
-            const __m128i m = _mm256_cvttpd_epi32(_mm256_floor_pd(_mm256_and_pd(fm, okm)));
-            const __m128i n = _mm256_cvttpd_epi32(_mm256_floor_pd(_mm256_and_pd(fn, okm)));
+            const __m256d fm_floor = _mm256_floor_pd(_mm256_and_pd(fm, okm));
+            const __m256d fn_floor = _mm256_floor_pd(_mm256_and_pd(fn, okm));
+            const __m128i m = _mm256_cvttpd_epi32(fm_floor);
+            const __m128i n = _mm256_cvttpd_epi32(fn_floor);
             const __m128i z = _mm256_cvttpd_epi32(_mm256_floor_pd(_mm256_and_pd(fz, okm)));
+            // Edge codes (edgeCode(), as doubles 0 to 15; those of invalid lanes are not kept).
+            __m128i e = _mm_setzero_si128();
+            if constexpr (kEdges)
+            {
+                const __m256d u = _mm256_sub_pd(fm, fm_floor), w = _mm256_sub_pd(fn, fn_floor);
+                const __m256d code = _mm256_add_pd(
+                    _mm256_add_pd(
+                        _mm256_and_pd(_mm256_cmp_pd(u, vedge_lo, _CMP_LT_OQ), _mm256_set1_pd(1.0)),
+                        _mm256_and_pd(_mm256_cmp_pd(u, vedge_hi, _CMP_GT_OQ), _mm256_set1_pd(2.0))),
+                    _mm256_add_pd(
+                        _mm256_and_pd(_mm256_cmp_pd(w, vedge_lo, _CMP_LT_OQ), _mm256_set1_pd(4.0)),
+                        _mm256_and_pd(_mm256_cmp_pd(w, vedge_hi, _CMP_GT_OQ),
+                                      _mm256_set1_pd(8.0))));
+                e = _mm256_cvttpd_epi32(code);
+            }
             const auto ok = static_cast<unsigned>(_mm256_movemask_pd(okm));
             valid += static_cast<std::size_t>(__builtin_popcount(ok));
 
@@ -221,6 +259,7 @@ struct QuantizeChunk
                 _mm_and_si128(_mm_and_si128(_mm_cmpeq_epi32(m, _mm_alignr_epi8(m, prev_m, 12)),
                                             _mm_cmpeq_epi32(n, _mm_alignr_epi8(n, prev_n, 12))),
                               _mm_cmpeq_epi32(z, _mm_alignr_epi8(z, prev_z, 12)));
+
             const auto same_bits = static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(same)));
             const unsigned repeat = same_bits & ok & ((ok << 1) | prev_ok);
             const unsigned keep = ok & ~repeat;
@@ -230,6 +269,24 @@ struct QuantizeChunk
             _mm_storeu_si128(reinterpret_cast<__m128i*>(m_out + v), _mm_shuffle_epi8(m, shuffle));
             _mm_storeu_si128(reinterpret_cast<__m128i*>(n_out + v), _mm_shuffle_epi8(n, shuffle));
             _mm_storeu_si128(reinterpret_cast<__m128i*>(z_out + v), _mm_shuffle_epi8(z, shuffle));
+            if constexpr (kEdges)
+            {
+                // A repeat's edge code joins that of the stored point of its run: each lane
+                // takes the codes of the repeats after it in the group (a suffix OR over runs,
+                // in two steps), and a run that began before the group adds its first lanes'
+                // to the last point stored.
+                const __m128i bits = _mm_setr_epi32(1, 2, 4, 8);
+                const __m128i rep = _mm_cmpeq_epi32(
+                    _mm_and_si128(_mm_set1_epi32(static_cast<int>(repeat)), bits), bits);
+                const __m128i next1 = _mm_srli_si128(rep, 4);  // lane k + 1 repeats lane k
+                __m128i run = _mm_or_si128(e, _mm_and_si128(_mm_srli_si128(e, 4), next1));
+                run = _mm_or_si128(run,
+                                   _mm_and_si128(_mm_srli_si128(run, 8),
+                                                 _mm_and_si128(next1, _mm_srli_si128(next1, 4))));
+                if (repeat & 1u) e_out[v - 1] |= _mm_cvtsi128_si32(run);
+                _mm_storeu_si128(reinterpret_cast<__m128i*>(e_out + v),
+                                 _mm_shuffle_epi8(run, shuffle));
+            }
             if constexpr (kKeepIndex)
             {
                 const __m128i idx = _mm_add_epi32(_mm_set1_epi32(static_cast<int>(j)), lane_index);
@@ -289,18 +346,20 @@ struct QuantizeChunk
     }
 #endif
 
-    template <bool kKeepIndex>
+    template <bool kKeepIndex, bool kEdges>
     ChunkSummary run(const PointsView& pts, std::size_t i0, std::size_t i1, int32_t* m_out,
-                     int32_t* n_out, int32_t* z_out, uint32_t* src_out, uint8_t* repeats) const
+                     int32_t* n_out, int32_t* z_out, uint32_t* src_out, uint8_t* repeats,
+                     int32_t* e_out) const
     {
         PassState st;
         st.v = i0;
         std::size_t i = i0;
 #if HIF_X86_AVX
         if (useAvx())
-            i = runAvx<kKeepIndex>(pts, i0, i1, m_out, n_out, z_out, src_out, repeats, st);
+            i = runAvx<kKeepIndex, kEdges>(pts, i0, i1, m_out, n_out, z_out, src_out, repeats,
+                                           e_out, st);
 #endif
-        runScalar<kKeepIndex>(pts, i, i1, m_out, n_out, z_out, src_out, repeats, st);
+        runScalar<kKeepIndex, kEdges>(pts, i, i1, m_out, n_out, z_out, src_out, repeats, e_out, st);
         ChunkSummary ch;
         ch.valid = st.valid;
         ch.near = st.near;
@@ -324,9 +383,17 @@ ChunkSummary quantizeChunk(const Eigen::Isometry3d& T, const GridGeometry& geome
                            double min_range, const PointsView& pts, std::size_t i0, std::size_t i1,
                            const ChunkOutput& out)
 {
-    const QuantizeChunk quant{T.linear(), T.translation(), geometry, min_range};
-    return out.src ? quant.run<true>(pts, i0, i1, out.m, out.n, out.z, out.src, out.repeats)
-                   : quant.run<false>(pts, i0, i1, out.m, out.n, out.z, nullptr, nullptr);
+    const QuantizeChunk quant{T.linear(), T.translation(), geometry, min_range,
+                              out.edge ? out.edge_fraction : 0.0};
+    if (out.src)
+        return out.edge ? quant.run<true, true>(pts, i0, i1, out.m, out.n, out.z, out.src,
+                                                out.repeats, out.edge)
+                        : quant.run<true, false>(pts, i0, i1, out.m, out.n, out.z, out.src,
+                                                 out.repeats, nullptr);
+    return out.edge ? quant.run<false, true>(pts, i0, i1, out.m, out.n, out.z, nullptr, nullptr,
+                                             out.edge)
+                    : quant.run<false, false>(pts, i0, i1, out.m, out.n, out.z, nullptr, nullptr,
+                                              nullptr);
 }
 
 }  // namespace hif::detail

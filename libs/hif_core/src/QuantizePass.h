@@ -29,9 +29,20 @@ struct ChunkSummary
     double top_slope_sq = -std::numeric_limits<double>::infinity();  ///< see ScanBuckets
 };
 
+/** Bits of a point's edge code (quantizeChunk()): the point lies within the edge margin of
+ *  its pillar's low-m, high-m, low-n or high-n edge. */
+enum EdgeBits : int32_t
+{
+    kEdgeLowM = 1,
+    kEdgeHighM = 2,
+    kEdgeLowN = 4,
+    kEdgeHighN = 8
+};
+
 /** Where pass 1 writes a chunk's kept points: their pillar (m, n) and height cell z from the
  *  chunk's first index on; with `src` (classification), their input index, and in `repeats`,
- *  1 for each input point that repeats the one before it. */
+ *  1 for each input point that repeats the one before it; with `edge` (insertion with
+ *  Params::pillar_edge_margin), their edge code (EdgeBits). */
 struct ChunkOutput
 {
     int32_t* m = nullptr;
@@ -39,12 +50,16 @@ struct ChunkOutput
     int32_t* z = nullptr;
     uint32_t* src = nullptr;  ///< null: no index wanted (then repeats is not written)
     uint8_t* repeats = nullptr;
+    int32_t* edge = nullptr;  ///< null: no edge codes wanted
+    /** With `edge`: the edge margin as a fraction of the pillar's size, in [0, 0.5). */
+    double edge_fraction = 0.0;
 };
 
 /** Pass 1 over input points [i0, i1): transform by `sensor_to_world`, quantize (Eq. 1, as
  *  quantize() without std::optional) and write the valid points that are not repeats to
- *  out.m/n/z[i0...] (and their input index to out.src), with their bounding box and the top
- *  beam's elevation. Points nearer the sensor than `min_range` are dropped (counted in
+ *  out.m/n/z[i0...] (and their input index to out.src, their edge code to out.edge), with
+ *  their bounding box and the top beam's elevation. A repeat's edge code joins that of the stored
+ *  point of its run. Points nearer the sensor than `min_range` are dropped (counted in
  *  `near`). Four points at a time with AVX when useAvx() (the same operations in the
  *  same order, without fused multiply-add, so the same bits), one at a time otherwise and for
  *  the last 1-3 points of a chunk. */

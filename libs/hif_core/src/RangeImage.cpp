@@ -361,4 +361,24 @@ void buildRangeImageCm(const RangeImageLayout& l, const PointsView& pts, std::ve
         [](uint16_t& cell, uint16_t v) { cell = std::min(cell, v); }, &blocks);
 }
 
+void BeamGate::withoutEdges(std::vector<Span>& spans) const
+{
+    // The pieces are appended after the spans, which are then dropped.
+    const std::size_t n = spans.size();
+    std::size_t e = 0;
+    for (std::size_t k = 0; k < n; ++k)
+    {
+        int32_t at = spans[k].lo;
+        const int32_t end = spans[k].hi;
+        while (e < edge_count && edge_spans[e].hi <= at) ++e;
+        for (std::size_t f = e; f < edge_count && edge_spans[f].lo < end; ++f)
+        {
+            if (edge_spans[f].lo > at) spans.push_back({at, edge_spans[f].lo});
+            at = std::max(at, edge_spans[f].hi);
+        }
+        if (at < end) spans.push_back({at, end});
+    }
+    spans.erase(spans.begin(), spans.begin() + static_cast<std::ptrdiff_t>(n));
+}
+
 }  // namespace hif::detail

@@ -326,13 +326,31 @@ struct BeamGate
         return true;
     }
 
+    /** Where the scan saw a surface within Params::pillar_edge_margin of the pillar's edge,
+     *  in the pillars beside it (ScanBuckets::edge_spans), sorted and disjoint: passedCells()
+     *  leaves those heights out. */
+    const Span* edge_spans = nullptr;
+    std::size_t edge_count = 0;
+
     /** The height cells of [lo, hi) that beams passed through, as sorted disjoint spans in
      *  `out` (cleared first): the cells each such beam crosses within the pillar, and those
      *  between two neighbouring beams that both passed (bridge_tan); all of [lo, hi) when a
      *  beam passed through `core` (floorOrObject()). Empty when none passed, or when a return
-     *  between those heights lies near the pillar (something is there: a veto). */
+     *  between those heights lies near the pillar (something is there: a veto). Without the
+     *  heights of a surface seen at the pillar's edge (edge_spans): it may go on into the
+     *  pillar where the beams toward its centre did not go. */
     void passedCells(int32_t lo, int32_t hi, Span core, std::vector<Span>& out,
                      bool sky = false) const
+    {
+        beamsThrough(lo, hi, core, out, sky);
+        if (edge_count != 0 && !out.empty()) withoutEdges(out);
+    }
+
+    /** `spans` (sorted and disjoint) without the heights of edge_spans. */
+    void withoutEdges(std::vector<Span>& spans) const;
+
+    /** passedCells() before the edges' heights are taken out. */
+    void beamsThrough(int32_t lo, int32_t hi, Span core, std::vector<Span>& out, bool sky) const
     {
         out.clear();
         Axis a;

@@ -70,6 +70,7 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
         gate.runs = ws.ground_runs.get();
         gate.generation = ws.ground_generation;
         gate.farthest_return = ws.farthest_return;
+        gate.edge_spans = scan.edgeSpansOf(p, gate.edge_count);
         return gate;
     };
 

@@ -99,6 +99,18 @@ struct Params
      *  pattern did not look this time) the map is kept as it is. */
     bool miss_needs_beam = true;
 
+    /** A surface at a pillar's edge (ours; 0 = off, the paper; needs miss_needs_beam):
+     *  distance, metres. An interval's heights at which the scan saw a surface within this
+     *  distance of the pillar's edge, in the pillar beside it, get no Eq. 13 miss from the
+     *  beams toward the pillar's centre: that surface may go on into the pillar at a place
+     *  those beams did not cross. The pillars cut a pole or a trunk that stands astride their
+     *  edge in two, and from one side the scan sees only the half in the next pillar while
+     *  its beams toward this pillar's centre pass beside the pole; without this, the half
+     *  seen from the other side decays (KITTI 08: a quarter of the poles' points). A mover
+     *  keeps the interval it left only while it stands within this distance of the edge.
+     *  Below half a pillar (validateWith()). */
+    double pillar_edge_margin = 0.0;
+
     /** Ground seen once is kept (ours; 0 = off, the paper; needs miss_needs_beam): a new piece
      *  of a pillar's floor (its lowest interval in the scan) gets the neutral prior 0.5 instead
      *  of p_empty (Eq. 14) where it was seen (not its padding), so that one sighting keeps it,
@@ -171,7 +183,7 @@ struct Params
     std::size_t max_intervals_per_pillar = 16;
 
     /** The fields, for loops over them (see FieldTable.h). */
-    [[nodiscard]] static const std::array<Field<Params>, 29>& fields();
+    [[nodiscard]] static const std::array<Field<Params>, 30>& fields();
 
     /** The paper's method as written: the additions above (HHP, the unseen-height prior,
      *  range-adaptive intervals, the sensor model, misses that need a beam; see-through misses
@@ -182,7 +194,7 @@ struct Params
     /** Throws std::invalid_argument naming the first invalid field and its value. */
     void validate() const;
     /** validate(), and the checks that involve the grid: see_through_range spans at most 2000
-     *  pillars. */
+     *  pillars, and pillar_edge_margin is under half a pillar. */
     void validateWith(const GridGeometry& geometry) const;
 
     /** Field-by-field equality (exact). */
@@ -193,10 +205,10 @@ struct Params
 static_assert(memberCount<Params>() == std::tuple_size_v<std::decay_t<decltype(Params::fields())>>,
               "every member of hif::Params needs its row in Params::fields()");
 
-inline const std::array<Field<Params>, 29>& Params::fields()
+inline const std::array<Field<Params>, 30>& Params::fields()
 {
     using P = Params;
-    static const std::array<Field<P>, 29> table{{
+    static const std::array<Field<P>, 30> table{{
         {"merge_gap", &P::merge_gap, Bounds::atLeast(0), 0,
          "Max gap between heights of one interval [m]"},
         {"interval_padding", &P::interval_padding, Bounds::atLeast(0), 0,
@@ -243,6 +255,9 @@ inline const std::array<Field<Params>, 29>& Params::fields()
          "Points nearer the sensor are not inserted and are dynamic [m], 0 = off"},
         {"miss_needs_beam", &P::miss_needs_beam, Bounds::any(), 3,
          "Eq. 13 misses only where a beam of the scan passed (not in the paper)"},
+        {"pillar_edge_margin", &P::pillar_edge_margin, Bounds::atLeast(0), 7,
+         "No miss at heights where the scan saw a surface this near the pillar's edge [m], 0 = "
+         "off (not in the paper)"},
         {"sensor_from_scans", &P::sensor_from_scans, Bounds::any(), 3,
          "Estimate the LiDAR's beams and resolution from the scans (not in the paper)"},
         {"ground_max_slope_deg", &P::ground_max_slope_deg, Bounds::closedOpen(0, 45), 5,

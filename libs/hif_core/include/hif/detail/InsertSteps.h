@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "hif/PillarGrid.h"
@@ -41,6 +42,25 @@ struct ScanBuckets
     std::vector<uint32_t> index;  ///< input index of cells[k] (filled for classification only)
     std::vector<Span> spans;      ///< at most one span per entry, so pillar p's fit at offsets[p]
     /** @} */
+
+    /** @name Surfaces at pillars' edges (insertion with Params::pillar_edge_margin)
+     *  Per pillar of the scan: the height cells of the scan's points that lie within the margin
+     *  of its edge in the pillars beside it (across an edge or a corner), and after
+     *  buildSpans() their spans, sorted and disjoint: where the scan saw a surface that may go
+     *  on into the pillar. Empty without the margin.
+     *  @{ */
+    std::vector<uint32_t> edge_offsets;      ///< pillar p owns edge_cells[edge_offsets[p]...]
+    std::vector<int32_t> edge_cells;         ///< sorted and distinct first after buildSpans()
+    std::vector<Span> edge_spans;            ///< pillar p's from edge_spans[edge_offsets[p]]
+    std::vector<uint32_t> edge_span_counts;  ///< per pillar
+    /** @} */
+
+    /** Pillar p's edge spans (after buildSpans()), their count in `count` (0: none). */
+    [[nodiscard]] const Span* edgeSpansOf(std::size_t p, std::size_t& count) const
+    {
+        count = edge_span_counts.empty() ? 0 : edge_span_counts[p];
+        return count == 0 ? nullptr : edge_spans.data() + edge_offsets[p];
+    }
 
     /** Per input point (filled for classification only): 1 when the point is a repeat of the
      *  input point before it, so it takes that point's class. */
@@ -77,8 +97,9 @@ struct ScanBuckets
     [[nodiscard]] std::size_t entryCount() const { return cells.size(); }
 
     /** Scratch of bucketPoints(), kept to be reused. */
-    std::vector<int32_t> tmp_m, tmp_n, tmp_z;
-    std::vector<uint32_t> tmp_src, tmp_bin, tmp_counts;
+    std::vector<int32_t> tmp_m, tmp_n, tmp_z, tmp_edge;
+    std::vector<uint32_t> tmp_src, tmp_bin, tmp_counts, tmp_pillar;
+    std::vector<std::pair<uint32_t, int32_t>> tmp_edge_pairs;
 };
 
 /** Step 1: transforms and quantizes every point (Eq. 1), skips invalid ones and repeats, and
