@@ -42,35 +42,35 @@ constexpr std::array<Beside, 16> kBeside = {besideOf(0),  besideOf(1),  besideOf
 
 /** The edge cells of `out` (ScanBuckets::edge_offsets, edge_cells) from its first v points
  *  and their edge codes: each point near an edge gives its height cell to the pillar beside
- *  it, when the scan hit that pillar (`pillarBeside(k, dm, dn)`: the index of the pillar at
- *  (dm, dn) from point k's, or kNone). Counted, then placed. */
+ *  it, when the scan hit that pillar (`pillarBeside(k, b, s)`: the index of the pillar at
+ *  offset s of Beside b from point k's, or kNone). Gathered in one pass, then placed. */
 template <typename PillarBeside>
 void bucketEdges(ScanBuckets& out, std::size_t v, PillarBeside&& pillarBeside)
 {
     constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
     const std::size_t np = out.pillarCount();
-    auto forEachBeside = [&](auto&& visit)
-    {
-        for (std::size_t k = 0; k < v; ++k)
-        {
-            const int32_t code = out.tmp_edge[k];
-            if (code == 0) continue;
-            const Beside& b = kBeside[static_cast<std::size_t>(code)];
-            for (int s = 0; s < b.count; ++s)
-            {
-                const uint32_t p = pillarBeside(k, b.dm[s], b.dn[s]);
-                if (p != kNone) visit(p, out.tmp_z[k]);
-            }
-        }
-    };
     std::vector<uint32_t>& offsets = out.edge_offsets;
     offsets.assign(np + 1, 0);
-    forEachBeside([&](uint32_t p, int32_t) { ++offsets[p + 1]; });
+    auto& pairs = out.tmp_edge_pairs;
+    pairs.clear();
+    for (std::size_t k = 0; k < v; ++k)
+    {
+        const int32_t code = out.tmp_edge[k];
+        if (code == 0) continue;
+        const Beside& b = kBeside[static_cast<std::size_t>(code)];
+        for (int s = 0; s < b.count; ++s)
+        {
+            const uint32_t p = pillarBeside(k, code, s);
+            if (p == kNone) continue;
+            ++offsets[p + 1];
+            pairs.emplace_back(p, out.tmp_z[k]);
+        }
+    }
     for (std::size_t p = 0; p < np; ++p) offsets[p + 1] += offsets[p];
     std::vector<uint32_t>& next = out.tmp_counts;
     next.assign(offsets.begin(), offsets.end() - 1);
-    out.edge_cells.resize(offsets[np]);
-    forEachBeside([&](uint32_t p, int32_t z) { out.edge_cells[next[p]++] = z; });
+    out.edge_cells.resize(pairs.size());
+    for (const auto& [p, z] : pairs) out.edge_cells[next[p]++] = z;
 }
 }  // namespace
 
@@ -226,9 +226,20 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
                                                    (int64_t{idx.n} - n0))] =
                     static_cast<uint32_t>(p);
             }
-            bucketEdges(out, v,
-                        [&](std::size_t k, int dm, int dn)
-                        { return pillar_of[static_cast<int64_t>(bin[k]) + dm * height + dn]; });
+            // The bin offsets of the pillars beside, per edge code.
+            std::array<std::array<int64_t, 3>, 16> delta{};
+            for (std::size_t c = 0; c < 16; ++c)
+                for (int i = 0; i < kBeside[c].count; ++i)
+                    delta[c][static_cast<std::size_t>(i)] =
+                        kBeside[c].dm[i] * height + kBeside[c].dn[i];
+            bucketEdges(
+                out, v,
+                [&](std::size_t k, int32_t code, int i)
+                {
+                    return pillar_of[static_cast<std::size_t>(
+                        bin[k] +
+                        delta[static_cast<std::size_t>(code)][static_cast<std::size_t>(i)])];
+                });
         }
     }
     else
@@ -254,10 +265,11 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
         out.offsets.push_back(static_cast<uint32_t>(v));
         if (edges)
             bucketEdges(out, v,
-                        [&](std::size_t k, int dm, int dn)
+                        [&](std::size_t k, int32_t code, int i)
                         {
-                            const int64_t m = int64_t{out.tmp_m[k]} + dm;
-                            const int64_t n = int64_t{out.tmp_n[k]} + dn;
+                            const Beside& b = kBeside[static_cast<std::size_t>(code)];
+                            const int64_t m = int64_t{out.tmp_m[k]} + b.dm[i];
+                            const int64_t n = int64_t{out.tmp_n[k]} + b.dn[i];
                             if (m < m_min || m > m_max || n < n_min || n > n_max)
                                 return std::numeric_limits<uint32_t>::max();
                             const uint64_t key =
