@@ -259,7 +259,6 @@ struct QuantizeChunk
                 _mm_and_si128(_mm_and_si128(_mm_cmpeq_epi32(m, _mm_alignr_epi8(m, prev_m, 12)),
                                             _mm_cmpeq_epi32(n, _mm_alignr_epi8(n, prev_n, 12))),
                               _mm_cmpeq_epi32(z, _mm_alignr_epi8(z, prev_z, 12)));
-
             const auto same_bits = static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(same)));
             const unsigned repeat = same_bits & ok & ((ok << 1) | prev_ok);
             const unsigned keep = ok & ~repeat;
@@ -385,11 +384,9 @@ ChunkSummary quantizeChunk(const Eigen::Isometry3d& T, const GridGeometry& geome
 {
     const QuantizeChunk quant{T.linear(), T.translation(), geometry, min_range,
                               out.edge ? out.edge_fraction : 0.0};
-    if (out.src)
-        return out.edge ? quant.run<true, true>(pts, i0, i1, out.m, out.n, out.z, out.src,
-                                                out.repeats, out.edge)
-                        : quant.run<true, false>(pts, i0, i1, out.m, out.n, out.z, out.src,
-                                                 out.repeats, nullptr);
+    if (out.src)  // classification: no edge codes
+        return quant.run<true, false>(pts, i0, i1, out.m, out.n, out.z, out.src, out.repeats,
+                                      nullptr);
     return out.edge ? quant.run<false, true>(pts, i0, i1, out.m, out.n, out.z, nullptr, nullptr,
                                              out.edge)
                     : quant.run<false, false>(pts, i0, i1, out.m, out.n, out.z, nullptr, nullptr,

@@ -50,7 +50,7 @@ struct ChunkOutput
     int32_t* z = nullptr;
     uint32_t* src = nullptr;  ///< null: no index wanted (then repeats is not written)
     uint8_t* repeats = nullptr;
-    int32_t* edge = nullptr;  ///< null: no edge codes wanted
+    int32_t* edge = nullptr;  ///< null: no edge codes wanted (classification, with `src`)
     /** With `edge`: the edge margin as a fraction of the pillar's size, in [0, 0.5). */
     double edge_fraction = 0.0;
 };
