@@ -14,11 +14,15 @@
 #include <mrpt/opengl/CSetOfTriangles.h>
 #include <mrpt/system/filesystem.h>
 
+#include <unistd.h>
+
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <type_traits>
 
 #include "hif/CHeightIntervalMap.h"
+#include "work_dir.h"
 
 using hif::CHeightIntervalMap;
 using mrpt::math::TPoint3D;
@@ -40,6 +44,14 @@ mrpt::obs::CObservationPointCloud::Ptr cloud(const std::vector<TPoint3D>& pts,
     obs->pointcloud = map;
     obs->sensorPose = sensorPose;
     return obs;
+}
+
+/** A folder of its own for what a test writes, in the system's temporary folder, removed when
+ *  the test passes. */
+std::filesystem::path scratch(const std::string& name)
+{
+    return std::filesystem::temp_directory_path() /
+           ("hif_map_" + name + "_" + std::to_string(getpid()));
 }
 }  // namespace
 
@@ -333,7 +345,8 @@ TEST(CHeightIntervalMap, AMapInUtmCoordinatesIsDrawnAndListedToTheMillimetre)
         EXPECT_LT(std::abs(t0.x(k)), 10.0f);
         EXPECT_LT(std::abs(t0.y(k)), 10.0f);
     }
-    const std::string prefix = mrpt::system::getTempFileName();
+    const hif::test::WorkDir work(scratch("geo"));
+    const std::string prefix = work.path() + "/map";
     map.saveMetricMapRepresentationToFile(prefix);
     std::ifstream f(prefix + "_intervals.txt");
     std::string header;
@@ -361,7 +374,8 @@ TEST(CHeightIntervalMap, SavesTextAndSceneRepresentation)
 {
     CHeightIntervalMap map;
     ASSERT_TRUE(map.insertObservation(*cloud({{0.5, 0.5, 0.0}, {-1.5, 0.5, 2.0}})));
-    const std::string prefix = mrpt::system::getTempFileName();
+    const hif::test::WorkDir work(scratch("text_scene"));
+    const std::string prefix = work.path() + "/map";
     map.saveMetricMapRepresentationToFile(prefix);
     std::ifstream f(prefix + "_intervals.txt");
     ASSERT_TRUE(f.good());
