@@ -9,8 +9,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace hif::test
@@ -20,6 +22,36 @@ inline std::string kittiRoot()
 {
     if (const char* env = std::getenv("HIF_KITTI_DIR")) return env;
     return HIF_DEFAULT_KITTI_DIR;
+}
+
+/** Makes `to` a KITTI sequence folder of the first `n` scans of the one at `from` (its scans
+ *  and labels linked, calib.txt copied, poses.txt and times.txt cut to `n` lines) and returns
+ *  `to`: a real clip for the tests that compare runs of the apps on it, at a fraction of the
+ *  time (the sanitizer build runs them several times slower). */
+inline std::string firstScans(const std::string& from, std::size_t n, const std::string& to)
+{
+    namespace fs = std::filesystem;
+    for (const char* sub : {"velodyne", "labels"})
+    {
+        if (!fs::is_directory(from + "/" + sub)) continue;
+        fs::create_directories(to + "/" + sub);
+        for (std::size_t i = 0; i < n; ++i)
+        {
+            char name[32];
+            std::snprintf(name, sizeof name, "/%06zu.%s", i,
+                          std::string(sub) == "labels" ? "label" : "bin");
+            fs::create_symlink(fs::absolute(from + "/" + sub + name), to + "/" + sub + name);
+        }
+    }
+    fs::copy_file(from + "/calib.txt", to + "/calib.txt");
+    for (const char* file : {"/poses.txt", "/times.txt"})
+    {
+        std::ifstream in(from + file);
+        std::ofstream out(to + file);
+        std::string line;
+        for (std::size_t i = 0; i < n && std::getline(in, line); ++i) out << line << '\n';
+    }
+    return to;
 }
 
 inline bool dataRequired()

@@ -245,6 +245,14 @@ void reportSensor(Run& run, std::size_t k, std::ostream& log)
     r.contradictions.push_back("scan " + std::to_string(k) + ": " + st.sensor_contradiction);
 }
 
+/** Prints the pose check's warning, if it gave one. */
+void warnOfPoses(Run& run, const std::optional<std::string>& doubt, std::ostream& log)
+{
+    if (!doubt) return;
+    log << Clean::kTag << " warning: " << *doubt << std::endl;
+    run.poses_doubted = true;
+}
+
 /** Points of a scan when its type says so without converting it (a point cloud), else 0. */
 std::size_t pointsOf(const mrpt::obs::CObservation& obs)
 {
@@ -269,12 +277,7 @@ std::vector<hif::apps::Scan> insertAll(Run& run, Outputs& out, Timings& t, std::
         const double ms = msSince(t0);
         checkInsideGrid(run, t.scans);
         reportSensor(run, t.scans, log);
-        if (!run.pose_check.done())
-            if (const auto doubt = run.pose_check.add(scan))
-            {
-                log << Clean::kTag << " warning: " << *doubt << std::endl;
-                run.poses_doubted = true;
-            }
+        if (!run.pose_check.done()) warnOfPoses(run, run.pose_check.add(scan), log);
         t.insert_ms.push_back(ms);
         t.points += pointsOf(*scan.obs);
         if (run.online)
@@ -294,6 +297,7 @@ std::vector<hif::apps::Scan> insertAll(Run& run, Outputs& out, Timings& t, std::
     }
     progress.finish();
     if (t.scans == 0) throw std::runtime_error("input '" + run.input + "' holds no scans");
+    warnOfPoses(run, run.pose_check.finish(), log);  // a run shorter than the check
     return held;
 }
 

@@ -93,7 +93,13 @@ std::optional<std::string> PoseCheck::add(const Scan& scan)
     occupied_.clear();
     for (std::size_t i = 0; i < x.size(); ++i)
         if (const auto k = key(x[i], y[i], z[i])) occupied_.insert(*k);
-    if (!done()) return std::nullopt;
+    return overlap_.size() >= kPairs ? finish() : std::nullopt;
+}
+
+std::optional<std::string> PoseCheck::finish()
+{
+    if (done() || overlap_.empty()) return std::nullopt;
+    finished_ = true;
     occupied_ = {};
     previous_pose_.reset();
     const double at_poses = medianOverlap(), above = medianAbove(), still = medianAboveNoMotion();
@@ -103,7 +109,7 @@ std::optional<std::string> PoseCheck::add(const Scan& scan)
     msg.precision(2);
     msg << std::fixed << "the poses may not belong to the scans: at their poses, consecutive "
         << "scans share " << at_poses * 100 << " % of their points (" << kVoxel
-        << " m voxels, median of the first " << kPairs << " pairs)";
+        << " m voxels, median of the first " << pairs() << (pairs() == 1 ? " pair)" : " pairs)");
     if (no_motion_better)
         msg << "; above the sensor, " << above * 100
             << " %, fewer than if it had not moved at all (" << still * 100 << " %)";

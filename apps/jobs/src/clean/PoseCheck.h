@@ -44,7 +44,10 @@ public:
      *  without world points are passed over). Returns, once the last pair is in and the poses
      *  fail, the warning to print. */
     std::optional<std::string> add(const Scan& scan);
-    [[nodiscard]] bool done() const { return overlap_.size() >= kPairs; }
+    /** Decides on the pairs added so far, for a run of fewer than kPairs + 1 scans: the
+     *  warning to print when the poses fail (none without a pair, or once done). */
+    std::optional<std::string> finish();
+    [[nodiscard]] bool done() const { return finished_; }
     /** Medians of the pairs checked so far: at the poses (all points), and above the sensor
      *  at the poses and with no motion between a pair (NaN when no pair had enough points
      *  above the sensor). */
@@ -63,6 +66,7 @@ private:
                                                          const std::vector<double>& z,
                                                          double min_z) const;
 
+    bool finished_ = false;
     bool have_origin_ = false;
     double ox_ = 0, oy_ = 0, oz_ = 0;
     std::unordered_set<uint64_t> occupied_;              ///< voxels of the previous scan
