@@ -348,10 +348,12 @@ TEST(NothingLostOnRealScans, AStoppedCleaningLeavesTheEarlierResultsAndNoPartial
 
 TEST(Georeferenced, AShiftedRealClipGivesTheSameClassesAndItsPointsPlusTheShift)
 {
-    const std::string seq = hif::test::kittiRoot() + "/sequences/04";
-    HIF_REQUIRE_KITTI_SEQUENCE(seq);
+    const std::string clip = hif::test::kittiRoot() + "/sequences/04";
+    HIF_REQUIRE_KITTI_SEQUENCE(clip);
     const WorkDir work = workDir("georeferenced_" + std::to_string(getpid()));
     const std::string& d = work.path();
+    // Its first 6 scans: enough for the comparison, at the time the sanitizers' build has.
+    const std::string seq = hif::test::firstScans(clip, 6, d + "/clip");
     // UTM-like: 630 km east, 5,800 km north, 250 m up; whole metres keep the pillars aligned.
     const Eigen::Vector3d shift(630000, 5800000, 250);
     shiftedSequence(seq, d + "/utm", shift);
