@@ -65,7 +65,7 @@ std::optional<std::string> PoseCheck::add(const Scan& scan)
     if (done()) return std::nullopt;
     std::vector<double> x, y, z;
     if (!hif::CHeightIntervalMap::observationToWorldPoints(*scan.obs, scan.robot_pose, x, y, z) ||
-        x.empty())
+        x.size() < kMinPoints)
         return std::nullopt;
     if (!have_origin_)
     {

@@ -39,10 +39,13 @@ public:
     static constexpr double kNoMotionMargin = 0.05;
     /** Points above the sensor a pair needs for the comparison with no motion. */
     static constexpr std::size_t kMinAbove = 200;
+    /** Points a scan needs to be checked: one of a few points (a scan cut short) would make
+     *  its two pairs look misplaced, and a short run has few pairs to outvote them. */
+    static constexpr std::size_t kMinPoints = 200;
 
-    /** Adds the next scan (while the check is not done; scans without points or of a type
-     *  without world points are passed over). Returns, once the last pair is in and the poses
-     *  fail, the warning to print. */
+    /** Adds the next scan (while the check is not done; scans with fewer than kMinPoints
+     *  points or of a type without world points are passed over). Returns, once the last pair is in
+     * and the poses fail, the warning to print. */
     std::optional<std::string> add(const Scan& scan);
     /** Decides on the pairs added so far, for a run of fewer than kPairs + 1 scans: the
      *  warning to print when the poses fail (none without a pair, or once done). */
