@@ -372,3 +372,47 @@ TEST(Sensors, EachSensorsClipIsCleanedWithTheDefaults)
         << r.output;
     EXPECT_EQ(readJson(seq + "/wrong/summary.json")["sensor"]["contradictions"].size(), 1u);
 }
+
+// A recording whose first scan is part of a sweep (a driver's first message, a quarter of the
+// azimuth): the model estimated from it gives way to the next scan's, and hif-clean says so.
+TEST(Sensors, AFirstScanThatIsPartOfASweepGivesWayToTheNextWholeOne)
+{
+    const WorkDir work = workDir("sensors_part_" + std::to_string(getpid()));
+    const std::string seq = work.path() + "/vlp-16";
+    auto r = synthesize(seq, 3,
+                        [](hif::jobs::SyntheticKittiOptions& o)
+                        {
+                            o.sensor = "vlp-16";
+                            o.scene = "street";
+                        });
+    ASSERT_EQ(r.code, 0) << r.output;
+    const std::string first = seq + "/velodyne/000000.bin";
+    const hif::io::Cloud c = hif::io::readKittiBin(first);
+    std::vector<float> kept;
+    std::vector<uint32_t> labels;
+    const auto all_labels = hif::io::readLabels(seq + "/labels/000000.label");
+    for (std::size_t i = 0; i < c.size(); ++i)
+    {
+        const double az = std::atan2(c.y[i], c.x[i]);
+        if (az < 0.0 || az >= M_PI / 2) continue;
+        kept.insert(kept.end(), {c.x[i], c.y[i], c.z[i], c.intensity[i]});
+        labels.push_back(all_labels[i]);
+    }
+    ASSERT_GT(kept.size() / 4, 1000u);
+    std::ofstream(first, std::ios::binary)
+        .write(reinterpret_cast<const char*>(kept.data()),
+               static_cast<std::streamsize>(kept.size() * sizeof(float)));
+    hif::io::writeLabels(seq + "/labels/000000.label", labels);
+    r = clean(seq, seq + "/out", noPicture);
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("of azimuth (estimated from scan 0)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("sensor : 16 beams"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("360 deg of azimuth (estimated again from scan 1: scan 0 saw only part "
+                            "of it)"),
+              std::string::npos)
+        << r.output;
+    const json s = readJson(seq + "/out/summary.json")["sensor"];
+    EXPECT_EQ(s["estimated_from_scan"].get<int>(), 1);
+    EXPECT_EQ(s["azimuth_coverage_deg"].get<double>(), 360.0);
+    EXPECT_EQ(s["beams"].get<int>(), 16);
+}

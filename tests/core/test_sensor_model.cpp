@@ -104,6 +104,54 @@ TEST(SensorModel, AFewPointsGiveNoModelAndTheGridEstimatesFromItsFirstScan)
     EXPECT_FALSE(p.sensorModel());
 }
 
+// A first scan that is part of a sweep (a driver's first message: a quarter of the azimuth, or
+// the upper rings only) gives a model of part of the sensor; the next whole sweep, within
+// kSensorSettleScans, replaces it. Scans that see less, or another sensor, do not.
+TEST(SensorModel, AFirstScanThatIsPartOfASweepGivesWayToTheNextWholeOne)
+{
+    auto sweep = [](double az_to, int first_beam)
+    {
+        Cloud c;
+        for (int col = 0; col * 0.2 < az_to; ++col)
+            for (int b = first_beam; b < 16; ++b) c.add(-15.0 + 2.0 * b, col * 0.2, 12.0);
+        return c;
+    };
+    const Cloud whole = sweep(360.0, 0), quarter = sweep(90.0, 0), upper = sweep(360.0, 10);
+    for (const Cloud* part : {&quarter, &upper})
+    {
+        PillarGrid grid;
+        EXPECT_TRUE(grid.insertScan(part->view()).sensor_estimated);
+        const SensorModel first = *grid.sensorModel();
+        EXPECT_TRUE(first.seesLessThan(*SensorModel::estimate(whole.view())));
+        EXPECT_TRUE(grid.insertScan(whole.view()).sensor_estimated);  // replaced
+        ASSERT_TRUE(grid.sensorModel());
+        EXPECT_EQ(grid.sensorModel()->beam_elevations_deg.size(), 16u);
+        EXPECT_EQ(grid.sensorModel()->azimuth_coverage_deg, 360.0);
+        EXPECT_EQ(grid.imageLayout(), RangeImageLayout::forSensor(grid.sensorModel()));
+        // Part of a sweep again: the whole one's model stays.
+        EXPECT_FALSE(grid.insertScan(part->view()).sensor_estimated);
+        EXPECT_EQ(grid.sensorModel()->azimuth_coverage_deg, 360.0);
+    }
+    // Whole from the start: the next scans of the same sensor leave it.
+    PillarGrid grid;
+    EXPECT_TRUE(grid.insertScan(whole.view()).sensor_estimated);
+    EXPECT_FALSE(grid.insertScan(whole.view()).sensor_estimated);
+    EXPECT_FALSE(grid.sensorModel()->seesLessThan(*grid.sensorModel()));
+    // After kSensorSettleScans, a scan that sees more is only checked (every
+    // kSensorCheckInterval scans): the model is not replaced mid-run.
+    PillarGrid late;
+    EXPECT_TRUE(late.insertScan(quarter.view()).sensor_estimated);
+    for (std::size_t k = 0; k < PillarGrid::kSensorSettleScans; ++k)
+        EXPECT_FALSE(late.insertScan(quarter.view()).sensor_estimated);
+    EXPECT_FALSE(late.insertScan(whole.view()).sensor_estimated);
+    EXPECT_EQ(late.sensorModel()->azimuth_coverage_deg, 90.0);
+    // A model given (the .ini, a map read back) is not replaced: only checked.
+    PillarGrid given;
+    given.setSensorModel(SensorModel::estimate(quarter.view()));
+    EXPECT_FALSE(given.insertScan(whole.view()).sensor_estimated);
+    EXPECT_EQ(given.sensorModel()->azimuth_coverage_deg, 90.0);
+}
+
 // The range images' rows and columns follow the sensor's spacing, but no finer than 0.05
 // degrees: a spacing of a millionth of a degree (valid for validate()) asks for a few thousand
 // rows, not billions.

@@ -230,8 +230,13 @@ void reportSensor(Run& run, std::size_t k, std::ostream& log)
     SensorReport& r = run.sensor;
     if (st.sensor_estimated)
     {
+        const std::string how = r.estimated_from_scan
+                                    ? "estimated again from scan " + std::to_string(k) + ": scan " +
+                                          std::to_string(*r.estimated_from_scan) +
+                                          " saw only part of it"
+                                    : "estimated from scan " + std::to_string(k);
         r.estimated_from_scan = k;
-        describeSensor(run.hif_map->grid(), "estimated from scan " + std::to_string(k), log);
+        describeSensor(run.hif_map->grid(), how, log);
     }
     if (st.sensor_checked) ++r.checks;
     if (st.sensor_contradiction.empty()) return;

@@ -70,6 +70,7 @@ void PillarGrid::setSensorModel(std::optional<SensorModel> model)
     layout_ = RangeImageLayout::forSensor(sensor_);
     beam_tangents_ = sensor_ ? sensor_->beamTangents() : std::vector<double>{};
     scans_since_check_ = kSensorCheckInterval - 1;  // given: the next scan is checked
+    settle_scans_left_ = 0;
 }
 
 double PillarGrid::pEmptyInit() const
@@ -98,8 +99,29 @@ InsertStats PillarGrid::insertScan(const PointsView& pts, const Eigen::Isometry3
             {
                 setSensorModel(std::move(m));
                 scans_since_check_ = 0;  // estimated from this scan: checked in 50
+                settle_scans_left_ = kSensorSettleScans;
+                estimated_from_points_ = pts.size;
                 estimated = true;
             }
+        }
+        else if (settle_scans_left_ > 0)
+        {
+            // Estimated again only from a scan with more points (by a tenth) than the one the
+            // model came from: part of a sweep has fewer than the whole; two whole sweeps
+            // differ by less, and an estimate costs about as much as an insertion.
+            const std::size_t left = settle_scans_left_ - 1;
+            if (pts.size > estimated_from_points_ + estimated_from_points_ / 10)
+            {
+                auto m = SensorModel::estimate(pts);
+                if (m && sensor_->seesLessThan(*m))
+                {
+                    setSensorModel(std::move(m));
+                    scans_since_check_ = 0;
+                    estimated_from_points_ = pts.size;
+                    estimated = true;
+                }
+            }
+            settle_scans_left_ = left;
         }
         else if (++scans_since_check_ >= kSensorCheckInterval)
         {

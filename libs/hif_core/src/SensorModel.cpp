@@ -333,6 +333,20 @@ std::optional<std::string> SensorModel::contradiction(const SensorModel& o) cons
     return std::nullopt;
 }
 
+bool SensorModel::seesLessThan(const SensorModel& o) const
+{
+    if (hasRings() != o.hasRings()) return false;  // another kind of sensor: contradiction()
+    const double n = static_cast<double>(beam_elevations_deg.size());
+    const double no = static_cast<double>(o.beam_elevations_deg.size());
+    // By more than a tenth each: scans of one sensor differ by a little (a rosette's edges, a
+    // ring that met only sky), a part of a sweep by much more.
+    constexpr double kMore = 1.1;
+    return no > kMore * n ||
+           o.elevation_max_deg - o.elevation_min_deg >
+               kMore * (elevation_max_deg - elevation_min_deg) ||
+           o.azimuth_coverage_deg > kMore * azimuth_coverage_deg;
+}
+
 RangeImageLayout RangeImageLayout::forSensor(const std::optional<SensorModel>& model)
 {
     RangeImageLayout l;

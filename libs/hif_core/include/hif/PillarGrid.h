@@ -46,7 +46,8 @@ struct InsertStats
     std::size_t pillars_updated = 0;  ///< existing pillars matched by the scan
     std::size_t pillars_created = 0;  ///< pillars seen for the first time
     /** With Params::sensor_from_scans: the model was estimated from this scan (the first one
-     *  with enough points), or this scan was checked against it. */
+     *  with enough points, or one of the next kSensorSettleScans that saw more of the sensor),
+     *  or this scan was checked against it. */
     bool sensor_estimated = false;
     bool sensor_checked = false;
     /** Why the scan checked does not look like the model's sensor (SensorModel::
@@ -151,6 +152,11 @@ public:
     [[nodiscard]] double pEmptyInit() const;
     /** Scans between two checks of a scan against the sensor model. */
     static constexpr std::size_t kSensorCheckInterval = 50;
+    /** Scans after the one a model was estimated from that are estimated too when they hold
+     *  more points (by a tenth), the model replaced by theirs where they saw more of the sensor
+     *  (SensorModel::seesLessThan()): a first scan that is part of a sweep does not set the
+     *  model for the run. */
+    static constexpr std::size_t kSensorSettleScans = 2;
 
     /** Threads used by insertion and classification (default 1; more than the machine's
      *  cores run as that many). Work is split by pillar, and pillars are independent, so every
@@ -220,6 +226,8 @@ private:
     std::vector<double> beam_tangents_;  ///< sensor_->beamTangents()
     RangeImageLayout layout_ = RangeImageLayout::forSensor(std::nullopt);
     std::size_t scans_since_check_ = 0;  ///< a check is due when it reaches kSensorCheckInterval
+    std::size_t settle_scans_left_ = 0;  ///< kSensorSettleScans after an estimate, counted down
+    std::size_t estimated_from_points_ = 0;  ///< points of the scan the model was estimated from
 
     /** Log-odds of P(static) at a world point (logit(p_empty_init) where nothing is known). */
     [[nodiscard]] double logOddsAt(double x, double y, double z) const;

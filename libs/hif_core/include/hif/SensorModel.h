@@ -77,6 +77,11 @@ struct SensorModel
      *  with much sky misses some), or a vertical spacing or horizontal resolution that differs
      *  by more than a quarter. */
     [[nodiscard]] std::optional<std::string> contradiction(const SensorModel& other) const;
+    /** Whether `other` (estimated from a later scan) saw more of the same kind of sensor than
+     *  this model did: more rings, a wider vertical field of view or more azimuth, each by
+     *  more than a tenth. A scan that is part of a sweep (a driver's first message, cut short)
+     *  gives a model that the next whole sweep shows more of. */
+    [[nodiscard]] bool seesLessThan(const SensorModel& other) const;
 
     /** Points nearer the sensor than this (horizontally, metres) are not used by estimate():
      *  a LiDAR's lasers sit a few centimetres apart, which blurs the elevations of near
