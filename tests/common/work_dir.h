@@ -8,6 +8,7 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <iostream>
@@ -50,5 +51,13 @@ private:
 
     std::string path_;
 };
+
+/** A WorkDir in the system's temporary folder, hif_<name>_<process id> (CTest runs two test
+ *  processes at a time). */
+inline WorkDir tempWorkDir(const std::string& name)
+{
+    return WorkDir(std::filesystem::temp_directory_path() /
+                   ("hif_" + name + "_" + std::to_string(getpid())));
+}
 
 }  // namespace hif::test

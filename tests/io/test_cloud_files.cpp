@@ -8,7 +8,6 @@
  */
 #include <gtest/gtest.h>
 
-#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -46,13 +45,6 @@ std::string reference(const std::string& ext, const std::vector<float>& xyzi,
     return h + std::string(reinterpret_cast<const char*>(xyzi.data()), xyzi.size() * 4);
 }
 
-/** This test's folder, removed when it passes. */
-hif::test::WorkDir scratch()
-{
-    return hif::test::WorkDir(fs::temp_directory_path() /
-                              ("hif_cloud_" + std::to_string(getpid())));
-}
-
 std::string freshDir(const hif::test::WorkDir& work, const std::string& name)
 {
     const fs::path d = fs::path(work.path()) / name;
@@ -66,7 +58,7 @@ TEST(CloudWriter, EveryWayOfWritingTheBodyGivesTheReferenceFiles)
 {
     const Eigen::Isometry3d pose =
         Eigen::Translation3d(1.5, -2.25, 0.5) * Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ());
-    const auto work = scratch();
+    const auto work = hif::test::tempWorkDir("cloud");
     // Counts, and the expectation given before the first point: none; exact; same number of
     // digits; fewer and more digits than the count (the body moved behind the right header).
     const std::vector<std::pair<std::size_t, std::optional<std::size_t>>> cases = {
@@ -123,7 +115,7 @@ TEST(CloudWriter, EveryWayOfWritingTheBodyGivesTheReferenceFiles)
 
 TEST(CloudWriter, AnUnfinishedWriterLeavesNoFileAndExpectsOnlyBeforeThePoints)
 {
-    const auto work = scratch();
+    const auto work = hif::test::tempWorkDir("cloud");
     const std::string d = freshDir(work, "unfinished");
     for (const bool expect : {false, true})
     {
@@ -140,7 +132,7 @@ TEST(CloudWriter, AnUnfinishedWriterLeavesNoFileAndExpectsOnlyBeforeThePoints)
 
 TEST(CloudWriter, ColouredPointsMakeAColouredPly)
 {
-    const auto work = scratch();
+    const auto work = hif::test::tempWorkDir("cloud");
     const std::string d = freshDir(work, "coloured");
     for (const std::optional<std::size_t> expected : {std::optional<std::size_t>{}, {3}, {40}})
     {

@@ -9,8 +9,6 @@
  */
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -30,12 +28,6 @@ namespace fs = std::filesystem;
 
 namespace
 {
-hif::test::WorkDir scratch(const std::string& name)
-{
-    return hif::test::WorkDir(fs::temp_directory_path() /
-                              ("hif_input_" + name + "_" + std::to_string(getpid())));
-}
-
 const std::string kIdentity = "1 0 0 0 0 1 0 0 0 0 1 0";
 
 /** A one-scan KITTI folder with these poses.txt and calib.txt lines. */
@@ -70,7 +62,7 @@ std::string errorOf(const std::string& dir)
 
 TEST(KittiSequence, APoseMustBeARigidMotion)
 {
-    const auto work = scratch("rigid");
+    const auto work = hif::test::tempWorkDir("input_rigid");
     const std::string tr = "Tr: " + kIdentity;
     // KITTI's own rows (6 digits) pass; a scaled rotation, zeros and a reflection do not.
     EXPECT_EQ(errorOf(sequence(work,
@@ -96,7 +88,7 @@ TEST(KittiSequence, APoseMustBeARigidMotion)
 
 TEST(KittiSequence, NumbersAreNamedByLineAndPosition)
 {
-    const auto work = scratch("numbers");
+    const auto work = hif::test::tempWorkDir("input_numbers");
     const std::string tr = "Tr: " + kIdentity;
     const auto pose = [&](const std::string& row) {
         return errorOf(sequence(work, {kIdentity, row}, {tr}));
@@ -124,7 +116,7 @@ TEST(KittiSequence, NumbersAreNamedByLineAndPosition)
 
 TEST(KittiSequence, ACalibrationWithTwoTrLinesIsRefused)
 {
-    const auto work = scratch("two_tr");
+    const auto work = hif::test::tempWorkDir("input_two_tr");
     const std::string e = errorOf(sequence(
         work, {kIdentity},
         {"P0: 1 0 0 0 0 1 0 0 0 0 1 0", "Tr: " + kIdentity, "Tr: 0 -1 0 0 0 0 -1 0 1 0 0 0"}));
@@ -133,7 +125,7 @@ TEST(KittiSequence, ACalibrationWithTwoTrLinesIsRefused)
 
 TEST(ReadPcd, AsciiNanIsAnInvalidPointAndFloat64KeepsTheMillimetres)
 {
-    const auto work = scratch("pcd");
+    const auto work = hif::test::tempWorkDir("input_pcd");
     const std::string ascii = work.path() + "/ascii.pcd";
     std::ofstream(ascii) << "VERSION 0.7\nFIELDS x y z intensity\nSIZE 4 4 4 4\nTYPE F F F F\n"
                             "COUNT 1 1 1 1\nWIDTH 3\nHEIGHT 1\nVIEWPOINT 1 2 3 1 0 0 0\nPOINTS 3\n"
@@ -197,7 +189,7 @@ TEST(ReadPcd, AsciiNanIsAnInvalidPointAndFloat64KeepsTheMillimetres)
 // last, partial one) reads back as written, float32 or float64, with a field between.
 TEST(ReadPcd, ABinaryBodyOfManyChunksReadsBackPointForPoint)
 {
-    const auto work = scratch("chunks");
+    const auto work = hif::test::tempWorkDir("input_chunks");
     constexpr std::size_t kPoints = 3 * 4096 + 123;
     const auto coordinate = [](std::size_t i, int axis)
     { return 630000.0 * (axis == 0) + 0.001 * double(i) + 10.0 * axis; };
@@ -330,7 +322,7 @@ std::string readError(const std::string& file)
 // as a uint8 (a driver's) reads as its value.
 TEST(ReadPcd, BinaryCompressedReadsAsItsBinaryTwin)
 {
-    const auto work = scratch("compressed");
+    const auto work = hif::test::tempWorkDir("input_compressed");
     const std::string binary = work.path() + "/binary.pcd";
     const std::string compressed = work.path() + "/compressed.pcd";
     DriverCloud::writeBinary(binary);
@@ -360,7 +352,7 @@ TEST(ReadPcd, BinaryCompressedReadsAsItsBinaryTwin)
 // not match POINTS and the fields, data that do not uncompress.
 TEST(ReadPcd, ABrokenCompressedBodyIsNamed)
 {
-    const auto work = scratch("compressed_bad");
+    const auto work = hif::test::tempWorkDir("input_compressed_bad");
     const std::string file = work.path() + "/bad.pcd";
     const std::vector<char> good = DriverCloud::compressed();
 
@@ -414,7 +406,7 @@ TEST(ReadPcd, ABrokenCompressedBodyIsNamed)
 
 TEST(CloudWriter, CoordinatesWidenToFloat64WhereFloat32WouldLoseMillimetres)
 {
-    const auto work = scratch("widen");
+    const auto work = hif::test::tempWorkDir("input_widen");
     const std::string d = work.path();
     for (const bool expect : {false, true})
     {

@@ -14,9 +14,6 @@
 #include <mrpt/opengl/CSetOfTriangles.h>
 #include <mrpt/system/filesystem.h>
 
-#include <unistd.h>
-
-#include <filesystem>
 #include <fstream>
 #include <random>
 #include <type_traits>
@@ -44,14 +41,6 @@ mrpt::obs::CObservationPointCloud::Ptr cloud(const std::vector<TPoint3D>& pts,
     obs->pointcloud = map;
     obs->sensorPose = sensorPose;
     return obs;
-}
-
-/** A folder of its own for what a test writes, in the system's temporary folder, removed when
- *  the test passes. */
-std::filesystem::path scratch(const std::string& name)
-{
-    return std::filesystem::temp_directory_path() /
-           ("hif_map_" + name + "_" + std::to_string(getpid()));
 }
 }  // namespace
 
@@ -345,7 +334,7 @@ TEST(CHeightIntervalMap, AMapInUtmCoordinatesIsDrawnAndListedToTheMillimetre)
         EXPECT_LT(std::abs(t0.x(k)), 10.0f);
         EXPECT_LT(std::abs(t0.y(k)), 10.0f);
     }
-    const hif::test::WorkDir work(scratch("geo"));
+    const auto work = hif::test::tempWorkDir("map_geo");
     const std::string prefix = work.path() + "/map";
     map.saveMetricMapRepresentationToFile(prefix);
     std::ifstream f(prefix + "_intervals.txt");
@@ -374,7 +363,7 @@ TEST(CHeightIntervalMap, SavesTextAndSceneRepresentation)
 {
     CHeightIntervalMap map;
     ASSERT_TRUE(map.insertObservation(*cloud({{0.5, 0.5, 0.0}, {-1.5, 0.5, 2.0}})));
-    const hif::test::WorkDir work(scratch("text_scene"));
+    const auto work = hif::test::tempWorkDir("map_text_scene");
     const std::string prefix = work.path() + "/map";
     map.saveMetricMapRepresentationToFile(prefix);
     std::ifstream f(prefix + "_intervals.txt");
