@@ -9,11 +9,12 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
+
+#include "hif/io/KittiSequence.h"
 
 namespace hif::test
 {
@@ -37,9 +38,8 @@ inline std::string firstScans(const std::string& from, std::size_t n, const std:
         fs::create_directories(to + "/" + sub);
         for (std::size_t i = 0; i < n; ++i)
         {
-            char name[32];
-            std::snprintf(name, sizeof name, "/%06zu.%s", i,
-                          std::string(sub) == "labels" ? "label" : "bin");
+            const std::string name =
+                "/" + hif::io::frameName(i) + (std::string(sub) == "labels" ? ".label" : ".bin");
             fs::create_symlink(fs::absolute(from + "/" + sub + name), to + "/" + sub + name);
         }
     }
