@@ -66,11 +66,16 @@ void PillarGrid::setThreads(std::size_t threads)
 void PillarGrid::setSensorModel(std::optional<SensorModel> model)
 {
     if (model) model->validate();
+    useSensorModel(std::move(model));
+    scans_since_check_ = kSensorCheckInterval - 1;  // given: the next scan is checked
+    settle_scans_left_ = 0;
+}
+
+void PillarGrid::useSensorModel(std::optional<SensorModel> model)
+{
     sensor_ = std::move(model);
     layout_ = RangeImageLayout::forSensor(sensor_);
     beam_tangents_ = sensor_ ? sensor_->beamTangents() : std::vector<double>{};
-    scans_since_check_ = kSensorCheckInterval - 1;  // given: the next scan is checked
-    settle_scans_left_ = 0;
 }
 
 double PillarGrid::pEmptyInit() const
@@ -95,9 +100,9 @@ InsertStats PillarGrid::insertScan(const PointsView& pts, const Eigen::Isometry3
     {
         if (!sensor_)
         {
-            if (auto m = SensorModel::estimate(pts))
+            if (auto m = SensorModel::estimate(pts))  // validated
             {
-                setSensorModel(std::move(m));
+                useSensorModel(std::move(m));
                 scans_since_check_ = 0;  // estimated from this scan: checked in 50
                 settle_scans_left_ = kSensorSettleScans;
                 estimated_from_points_ = pts.size;
@@ -109,19 +114,18 @@ InsertStats PillarGrid::insertScan(const PointsView& pts, const Eigen::Isometry3
             // Estimated again only from a scan with more points (by a tenth) than the one the
             // model came from: part of a sweep has fewer than the whole; two whole sweeps
             // differ by less, and an estimate costs about as much as an insertion.
-            const std::size_t left = settle_scans_left_ - 1;
+            --settle_scans_left_;
             if (pts.size > estimated_from_points_ + estimated_from_points_ / 10)
             {
                 auto m = SensorModel::estimate(pts);
                 if (m && sensor_->seesLessThan(*m))
                 {
-                    setSensorModel(std::move(m));
+                    useSensorModel(std::move(m));
                     scans_since_check_ = 0;
                     estimated_from_points_ = pts.size;
                     estimated = true;
                 }
             }
-            settle_scans_left_ = left;
         }
         else if (++scans_since_check_ >= kSensorCheckInterval)
         {

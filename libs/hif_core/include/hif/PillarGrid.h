@@ -229,6 +229,10 @@ private:
     std::size_t settle_scans_left_ = 0;  ///< kSensorSettleScans after an estimate, counted down
     std::size_t estimated_from_points_ = 0;  ///< points of the scan the model was estimated from
 
+    /** The model (valid or none), its image layout and beam tangents; setSensorModel() also
+     *  resets the checks, as for a given model. */
+    void useSensorModel(std::optional<SensorModel> model);
+
     /** Log-odds of P(static) at a world point (logit(p_empty_init) where nothing is known). */
     [[nodiscard]] double logOddsAt(double x, double y, double z) const;
 };
