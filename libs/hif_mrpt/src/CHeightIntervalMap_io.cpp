@@ -26,9 +26,9 @@ namespace
  *  range (Field::since_version), version 3 the sensor model (its option, and the model after
  *  the pillars), version 4 the `online` option and the free-space test's scans (after the
  *  model), version 5 the ground options, version 6 each pillar's cells beams passed through
- *  (Pillar::passed, after seen_top), version 7 the pillar edge margin; every older version is still
- * read (its pillars with no such cells: what later scans insert there starts from p_empty_init
- * until beams pass). */
+ *  (Pillar::passed, after seen_top), version 7 the pillar edge margin; every older version
+ *  is still read (its pillars with no such cells: what later scans insert there starts from
+ *  p_empty_init until beams pass). */
 constexpr uint8_t kSerializationVersion = 7;
 /** More beams than any LiDAR has: a larger count in a file is corruption. */
 constexpr uint32_t kMaxBeams = 4096;
