@@ -1,71 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file   hif-icp-slam/main.cpp
- * @brief  hif-icp-slam's command line: 3D LiDAR ICP-SLAM on MRPT whose map HIF keeps clean;
- *         the work is hif::jobs::IcpSlam (apps/jobs).
+ * @brief  hif-icp-slam: 3D LiDAR ICP-SLAM on MRPT whose map HIF keeps clean; the work is
+ *         hif::jobs::IcpSlam (apps/jobs), its flags hif::jobs::IcpSlamCommandLine.
  */
-#include <mrpt/3rdparty/tclap/CmdLine.h>
-#include <iostream>
-
 #include "hif/apps/Cli.h"
-#include "hif/jobs/IcpSlam.h"
-
-namespace
-{
-struct Cli
-{
-    TCLAP::CmdLine cmd{
-        "hif-icp-slam: 3D LiDAR ICP-SLAM on MRPT whose map HIF keeps clean. Estimates the "
-        "6-DoF pose of every scan with mrpt::slam::CICP against a voxel map of the earlier "
-        "scans, starting from a constant-velocity guess; HIF (online) classifies each scan "
-        "at its estimated pose and its dynamic points are kept out of that map. Ground-truth "
-        "poses in the input are used only to report the error. Writes poses_kitti.txt (KITTI "
-        "odometry format, LiDAR poses in the frame of the first scan), slam_map.ply (the "
-        "static points of every scan at its estimated pose), map.hifmap and summary.json.",
-        ' ', "0.1"};
-    TCLAP::ValueArg<std::string> input{
-        "i",  "input", "A rawlog (poses optional), a .simplemap, or a KITTI sequence folder",
-        true, "",      "in.rawlog|folder",
-        cmd};
-    TCLAP::ValueArg<std::string> output{
-        "o", "output", "Output folder (created if needed)", true, "", "folder", cmd};
-    TCLAP::ValueArg<std::string> config{
-        "c",   "config", "Configuration (default: the shipped icp-slam-3d.ini)", false, "",
-        "ini", cmd};
-    TCLAP::ValueArg<std::string> labels{
-        "",
-        "labels",
-        "SemanticKITTI labels folder (NNNNNN.label): count the moving points that entered the "
-        "map ICP aligns against (default: <input>/labels for a KITTI folder)",
-        false,
-        "",
-        "folder",
-        cmd};
-    TCLAP::SwitchArg no_hif{"", "no-hif",
-                            "Every point enters the map ICP aligns against (no HIF): for "
-                            "comparison",
-                            cmd};
-    TCLAP::SwitchArg overwrite{"", "overwrite", "Replace earlier results in the output folder",
-                               cmd};
-    TCLAP::SwitchArg quiet{"q", "quiet", "No progress bar", cmd};
-};
-
-int run(Cli& cli)
-{
-    hif::jobs::IcpSlamOptions o;
-    o.input = cli.input.getValue();
-    o.output = cli.output.getValue();
-    if (cli.config.isSet()) o.config = cli.config.getValue();
-    o.labels = cli.labels.getValue();
-    o.use_hif = !cli.no_hif.getValue();
-    o.overwrite = cli.overwrite.getValue();
-    o.show_progress = !cli.quiet.getValue();
-    hif::jobs::IcpSlam(o).run(std::cout);
-    return 0;
-}
-}  // namespace
+#include "hif/jobs/IcpSlamCommandLine.h"
 
 int main(int argc, char** argv)
 {
-    return hif::apps::cliMain<Cli>(hif::jobs::IcpSlam::kTag, argc, argv, run);
+    return hif::apps::cliMain<hif::jobs::IcpSlamCommandLine>(argc, argv);
 }

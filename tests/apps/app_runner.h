@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file   app_runner.h
- * @brief  Test helper: run an app as a user does (stdout and stderr to one log), check that it
- *         failed with a message, read JSON, make a work folder.
+ * @brief  Test helper: run an app's program as a user does (stdout and stderr to one log), check
+ *         that a run failed with a message, read JSON, make a work folder.
  */
 #pragma once
 

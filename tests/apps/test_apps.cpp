@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file   test_apps.cpp
- * @brief  The programs themselves: --help and a bad flag, hif-eval on a hand-counted example (its
- *         printed tables and JSON).
+ * @brief  The apps' command lines: the programs' --help and a bad flag, and hif-eval's on a
+ *         hand-counted example (its printed tables and JSON).
  */
 #include <gtest/gtest.h>
 
@@ -22,6 +22,7 @@ using hif::test::clean;
 using hif::test::expectError;
 using hif::test::readJson;
 using hif::test::runApp;
+using hif::test::runInProcess;
 using hif::test::WorkDir;
 using hif::test::workDir;
 
@@ -37,6 +38,7 @@ void writeRangesOnTheXAxis(const std::string& file, const std::vector<float>& ra
 }
 }  // namespace
 
+// The programs themselves, as a user runs them: their exit codes and TCLAP's messages.
 TEST(Apps, HelpExitsZeroAndABadFlagStopsTheApp)
 {
     for (const std::string app :
@@ -52,6 +54,31 @@ TEST(Apps, HelpExitsZeroAndABadFlagStopsTheApp)
         EXPECT_NE(bad.output.find("PARSE ERROR"), std::string::npos) << bad.output;
         EXPECT_EQ(bad.output.find("error:"), std::string::npos) << "the app ran: " << bad.output;
     }
+}
+
+// Most tests run their command lines in process (runInProcess()): the same words, parsed by the
+// same command line, give what the program gives, to the byte.
+TEST(Apps, ACommandLineRunInProcessGivesWhatTheProgramGives)
+{
+    const WorkDir work = workDir("in_process_" + std::to_string(getpid()));
+    const std::string& d = work.path();
+    for (const std::string app :
+         {"kitti2rawlog", "hif-clean", "hif-eval", "hif-synthetic-kitti", "hif-icp-slam"})
+        for (const std::string args : {"--version", "--no-such-flag", "-o"})
+        {
+            SCOPED_TRACE(app + " " + args);
+            const auto program = runApp(app, args);
+            const auto in_process = runInProcess(app, args);
+            EXPECT_EQ(in_process.code, program.code);
+            EXPECT_EQ(in_process.output, program.output);
+        }
+    // A job's refusal of a quoted value: its error line and code.
+    const std::string args = "-i " + d + " -o " + d + "/out --extrinsic '1 2  3' -q";
+    const auto program = runApp("hif-clean", args);
+    const auto in_process = runInProcess("hif-clean", args);
+    expectError(program, "1 2  3");
+    EXPECT_EQ(in_process.code, program.code);
+    EXPECT_EQ(in_process.output, program.output);
 }
 
 // --objects: each moving object (class and SemanticKITTI instance id) scored apart, with the
@@ -75,7 +102,7 @@ TEST(HifEval, ScoresEachMovingObjectApart)
     writeBin("000001.bin", {30, 40, 44});
     const std::string args =
         "--labels " + d + "/labels --predictions " + d + "/pred --objects --json " + d;
-    const auto r = runApp("hif-eval", args + "/objects.json --scans " + d + "/velodyne");
+    const auto r = runInProcess("hif-eval", args + "/objects.json --scans " + d + "/velodyne");
     ASSERT_EQ(r.code, 0) << r.output;
     const json rows = readJson(d + "/objects.json")["per_object"];
     ASSERT_EQ(rows.size(), 3u) << rows;
@@ -98,12 +125,13 @@ TEST(HifEval, ScoresEachMovingObjectApart)
         std::string::npos)
         << r.output;
     // Without --scans the range is unknown: "-", null in the JSON.
-    const auto n = runApp("hif-eval", args + "/no_scans.json");
+    const auto n = runInProcess("hif-eval", args + "/no_scans.json");
     ASSERT_EQ(n.code, 0) << n.output;
     EXPECT_TRUE(readJson(d + "/no_scans.json")["per_object"][0]["mean_range"].is_null());
     EXPECT_NE(n.output.find("66.67         -"), std::string::npos) << n.output;
     // Without --objects, no such table.
-    const auto plain = runApp("hif-eval", "--labels " + d + "/labels --predictions " + d + "/pred");
+    const auto plain =
+        runInProcess("hif-eval", "--labels " + d + "/labels --predictions " + d + "/pred");
     ASSERT_EQ(plain.code, 0) << plain.output;
     EXPECT_EQ(plain.output.find("moving object"), std::string::npos) << plain.output;
 }
@@ -125,8 +153,8 @@ TEST(HifEval, AgreesWithAHandCountedExample)
     hif::io::writeLabels(d + "/pred/000001.label", {251, 9, 253});
     // Totals: static 4, kept 3 -> SA 75; dynamic 3, removed 2 -> DA 66.67;
     // AA = sqrt(75 * 66.67) = 70.71; HA = 2 * 75 * 66.67 / 141.67 = 70.59.
-    const auto r = runApp("hif-eval", "--labels " + d + "/labels --predictions " + d +
-                                          "/pred --json " + d + "/scores.json");
+    const auto r = runInProcess("hif-eval", "--labels " + d + "/labels --predictions " + d +
+                                                "/pred --json " + d + "/scores.json");
     ASSERT_EQ(r.code, 0) << r.output;
     const json j = readJson(d + "/scores.json");
     const json& t = j["total"];
@@ -166,8 +194,8 @@ TEST(HifEval, AgreesWithAHandCountedExample)
     writeBin("000000.bin", {5, 15, 25, 12, 2, 40});
     writeBin("000001.bin", {1, 60, 8});
     const auto rb =
-        runApp("hif-eval", "--labels " + d + "/labels --predictions " + d + "/pred --scans " + d +
-                               "/velodyne --json " + d + "/scores2.json");
+        runInProcess("hif-eval", "--labels " + d + "/labels --predictions " + d + "/pred --scans " +
+                                     d + "/velodyne --json " + d + "/scores2.json");
     ASSERT_EQ(rb.code, 0) << rb.output;
     const json j2 = readJson(d + "/scores2.json");
     const json& cls = j2["per_moving_class"];
@@ -219,17 +247,18 @@ TEST(HifEval, AgreesWithAHandCountedExample)
     // A scan of another length than its labels, or a truncated one, is named.
     writeBin("000001.bin", {1, 60});
     const auto short_scan =
-        runApp("hif-eval", "--labels " + d + "/labels --predictions " + d + "/pred --scans " + d +
-                               "/velodyne --json " + d + "/scores3.json --overwrite");
+        runInProcess("hif-eval", "--labels " + d + "/labels --predictions " + d + "/pred --scans " +
+                                     d + "/velodyne --json " + d + "/scores3.json --overwrite");
     expectError(short_scan, "000001.bin' does not hold the 3 points of its label file");
     fs::resize_file(d + "/velodyne/000001.bin", 20);
     expectError(
-        runApp("hif-eval", "--labels " + d + "/labels --predictions " + d + "/pred --scans " + d +
-                               "/velodyne --json " + d + "/scores3.json --overwrite"),
+        runInProcess("hif-eval", "--labels " + d + "/labels --predictions " + d + "/pred --scans " +
+                                     d + "/velodyne --json " + d + "/scores3.json --overwrite"),
         "000001.bin' is 20 bytes, not a multiple of 16");
 
     // A prediction whose size differs from its labels is an error naming both files.
     hif::io::writeLabels(d + "/pred/000001.label", {251, 9});
-    const auto bad = runApp("hif-eval", "--labels " + d + "/labels --predictions " + d + "/pred");
+    const auto bad =
+        runInProcess("hif-eval", "--labels " + d + "/labels --predictions " + d + "/pred");
     expectError(bad, "000001.label' has 2 points");
 }

@@ -16,6 +16,7 @@
 #include "app_runner.h"
 #include "hif/io/CloudFiles.h"
 #include "hif/io/Labels.h"
+#include "job_runner.h"
 #include "synthetic_suite.h"
 
 namespace fs = std::filesystem;
@@ -24,6 +25,7 @@ using hif::test::expectError;
 using hif::test::readJson;
 using hif::test::Result;
 using hif::test::runApp;
+using hif::test::runInProcess;
 using hif::test::WorkDir;
 using hif::test::workDir;
 
@@ -77,17 +79,17 @@ TEST_F(BadInput, IniMistakesNameTheKeySectionAndFile)
 TEST_F(BadInput, NegativeNumbersAreRejectedNotWrapped)
 {
     const std::string in = "-i " + root_ + "/all.rawlog -o " + root_ + "/neg -q ";
-    expectError(runApp("hif-clean", in + "--threads -3"), "--threads -3 is not in [1, 1024]");
-    expectError(runApp("hif-clean", in + "--first-frame -2"),
+    expectError(runInProcess("hif-clean", in + "--threads -3"), "--threads -3 is not in [1, 1024]");
+    expectError(runInProcess("hif-clean", in + "--first-frame -2"),
                 "--first-frame -2 is not in [0, 999999]");
-    expectError(runApp("hif-synthetic-kitti", "-o " + root_ + "/neg_seq -n -1"),
+    expectError(runInProcess("hif-synthetic-kitti", "-o " + root_ + "/neg_seq -n -1"),
                 "--scans -1 is not in [1, 999999]");
-    expectError(runApp("hif-synthetic-kitti", "-o " + root_ + "/neg_seq --seed -1"),
+    expectError(runInProcess("hif-synthetic-kitti", "-o " + root_ + "/neg_seq --seed -1"),
                 "--seed -1 is not in [0, 4294967295]");
-    expectError(runApp("hif-synthetic-kitti", "-o " + root_ + "/neg_seq --ego-speed -1"),
+    expectError(runInProcess("hif-synthetic-kitti", "-o " + root_ + "/neg_seq --ego-speed -1"),
                 "--ego-speed -1.000000 is not in [0, 60] m/s");
     expectError(
-        runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + root_ + "/neg.rawlog --first -2"),
+        runInProcess("kitti2rawlog", "-i " + root_ + "/seq -o " + root_ + "/neg.rawlog --first -2"),
         "--first -2 is not in [0, 5]");
     EXPECT_FALSE(fs::exists(root_ + "/neg"));
     EXPECT_FALSE(fs::exists(root_ + "/neg_seq")) << "a rejected flag made the output folder";
@@ -100,7 +102,7 @@ TEST_F(BadInput, AnEmptyScanFileIsATruncatedOne)
     const std::string& seq = work.path();
     fs::copy(root_ + "/seq", seq, fs::copy_options::recursive);
     std::ofstream(seq + "/velodyne/000003.bin", std::ios::trunc).close();
-    expectError(runApp("kitti2rawlog", "-i " + seq + " -o " + seq + "/x.rawlog"),
+    expectError(runInProcess("kitti2rawlog", "-i " + seq + " -o " + seq + "/x.rawlog"),
                 "velodyne/000003.bin' is empty (0 bytes): truncated?");
     EXPECT_FALSE(fs::exists(seq + "/x.rawlog"));
 }
@@ -108,7 +110,7 @@ TEST_F(BadInput, AnEmptyScanFileIsATruncatedOne)
 TEST_F(BadInput, AFailedRunOverEarlierResultsLeavesThemWhole)
 {
     const std::string out = root_ + "/keep";
-    auto r = runApp("hif-clean", "-i " + root_ + "/all.rawlog -o " + out + " -q");
+    auto r = runInProcess("hif-clean", "-i " + root_ + "/all.rawlog -o " + out + " -q");
     ASSERT_EQ(r.code, 0) << r.output;
     const std::string summary = bytesOf(out + "/summary.json");
     const std::string map = bytesOf(out + "/map.hifmap");
@@ -121,7 +123,7 @@ TEST_F(BadInput, AFailedRunOverEarlierResultsLeavesThemWhole)
         std::ofstream(root_ + "/cut.rawlog", std::ios::binary)
             .write(all.data(), std::streamsize(all.size() * 3 / 5));
     }
-    r = runApp("hif-clean", "-i " + root_ + "/cut.rawlog -o " + out + " -q --overwrite");
+    r = runInProcess("hif-clean", "-i " + root_ + "/cut.rawlog -o " + out + " -q --overwrite");
     expectError(r, "cut.rawlog' is corrupt or truncated");
     EXPECT_EQ(bytesOf(out + "/summary.json"), summary);
     EXPECT_EQ(bytesOf(out + "/map.hifmap"), map);
@@ -134,7 +136,8 @@ TEST_F(BadInput, AFailedRunOverEarlierResultsLeavesThemWhole)
             << "left behind: " << e.path();
 
     // A run that succeeds replaces them, and leaves the user's file.
-    r = runApp("hif-clean", "-i " + root_ + "/all.rawlog -o " + out + "/ -q --overwrite --online");
+    r = runInProcess("hif-clean",
+                     "-i " + root_ + "/all.rawlog -o " + out + "/ -q --overwrite --online");
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_EQ(readJson(out + "/summary.json")["mode"], "online");
     EXPECT_EQ(bytesOf(out + "/mine/notes.txt"), "keep me");
@@ -144,21 +147,23 @@ TEST_F(BadInput, AFailedRunOverEarlierResultsLeavesThemWhole)
 TEST_F(BadInput, ScansConvertedFromTheMiddleKeepTheirNumbers)
 {
     const std::string rawlog = root_ + "/from2.rawlog";
-    auto r = runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + rawlog + " --first 2 --last 4");
+    auto r =
+        runInProcess("kitti2rawlog", "-i " + root_ + "/seq -o " + rawlog + " --first 2 --last 4");
     ASSERT_EQ(r.code, 0) << r.output;
-    r = runApp("hif-clean", "-i " + rawlog + " -o " + root_ + "/from2 -q");
+    r = runInProcess("hif-clean", "-i " + rawlog + " -o " + root_ + "/from2 -q");
     ASSERT_EQ(r.code, 0) << r.output;
     for (int f = 0; f < 6; ++f)
         EXPECT_EQ(fs::exists(root_ + "/from2/predictions/00000" + std::to_string(f) + ".label"),
                   f >= 2 && f <= 4)
             << f;
     // Scored against the right labels: the sizes match scan for scan.
-    r = runApp("hif-eval", "--labels " + root_ + "/seq/labels --predictions " + root_ +
-                               "/from2/predictions -q");
+    r = runInProcess("hif-eval", "--labels " + root_ + "/seq/labels --predictions " + root_ +
+                                     "/from2/predictions -q");
     EXPECT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("3 scans"), std::string::npos) << r.output;
-    expectError(runApp("hif-clean", "-i " + rawlog + " -o " + root_ + "/from2b -q --first-frame 0"),
-                "--first-frame 0 disagrees with the input, whose first scan is frame 2");
+    expectError(
+        runInProcess("hif-clean", "-i " + rawlog + " -o " + root_ + "/from2b -q --first-frame 0"),
+        "--first-frame 0 disagrees with the input, whose first scan is frame 2");
 }
 
 TEST_F(BadInput, RedirectedOutputReadsInOrderAndFoldersAreNamedForWhatTheyAre)
@@ -174,8 +179,8 @@ TEST_F(BadInput, RedirectedOutputReadsInOrderAndFoldersAreNamedForWhatTheyAre)
     EXPECT_LT(header, progress) << r.output;
     EXPECT_NE(r.output.find("inserting 6 scans"), std::string::npos) << r.output;
 
-    expectError(runApp("hif-eval", "--labels " + root_ + "/all.rawlog --predictions " + root_ +
-                                       "/log/predictions"),
+    expectError(runInProcess("hif-eval", "--labels " + root_ + "/all.rawlog --predictions " +
+                                             root_ + "/log/predictions"),
                 "labels folder '" + root_ + "/all.rawlog' is not a folder");
 }
 

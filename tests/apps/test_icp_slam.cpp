@@ -25,7 +25,7 @@
 #include "kitti_fixture.h"
 
 using hif::test::readJson;
-using hif::test::runApp;
+using hif::test::runInProcess;
 using hif::test::WorkDir;
 using hif::test::workDir;
 
@@ -128,7 +128,7 @@ TEST(HifIcpSlam, TracksARawlogWithoutPoses)
             arch << *obs;
         }
     }
-    auto r = runApp("hif-icp-slam", "-i " + d + "/no_poses.rawlog -o " + d + "/out -q");
+    auto r = runInProcess("hif-icp-slam", "-i " + d + "/no_poses.rawlog -o " + d + "/out -q");
     ASSERT_EQ(r.code, 0) << r.output;
     // SLAM classifies each scan as it comes: a config whose map is offline is refused.
     {
@@ -141,8 +141,8 @@ TEST(HifIcpSlam, TracksARawlogWithoutPoses)
         text.replace(at, 11, "online=false");
         std::ofstream(d + "/offline.ini") << text;
     }
-    const auto off = runApp("hif-icp-slam", "-i " + d + "/no_poses.rawlog -o " + d + "/off -q -c " +
-                                                d + "/offline.ini");
+    const auto off = runInProcess("hif-icp-slam", "-i " + d + "/no_poses.rawlog -o " + d +
+                                                      "/off -q -c " + d + "/offline.ini");
     expectError(off, "is offline (online=false), but SLAM classifies each scan as it comes");
     EXPECT_NE(r.output.find("no trajectory error"), std::string::npos) << r.output;
     const nlohmann::json s = readJson(d + "/out/summary.json");

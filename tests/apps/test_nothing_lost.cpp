@@ -35,13 +35,14 @@
 #include "hif/apps/TopView.h"
 #include "hif/io/CloudFiles.h"
 #include "hif/io/KittiSequence.h"
+#include "job_runner.h"
 #include "kitti_fixture.h"
 #include "synthetic_suite.h"
 
 extern char** environ;
 
 namespace fs = std::filesystem;
-// The app runner's helpers (runApp, expectError, readJson, bytesOf, WorkDir, ...).
+// The app runner's helpers (runInProcess, runApp, expectError, readJson, bytesOf, WorkDir, ...).
 using namespace hif::test;  // NOLINT(google-build-using-namespace)
 
 namespace
@@ -129,7 +130,7 @@ void shiftedSequence(const std::string& from, const std::string& dir, const Eige
 TEST_F(NothingLost, HifEvalReplacesNoFileUnaskedAndNeverAnInput)
 {
     const std::string out = root_ + "/eval_out";
-    ASSERT_EQ(runApp("hif-clean", "-i " + root_ + "/all.rawlog -o " + out + " -q").code, 0);
+    ASSERT_EQ(runInProcess("hif-clean", "-i " + root_ + "/all.rawlog -o " + out + " -q").code, 0);
     const std::string base = "--labels " + root_ + "/seq/labels --predictions " + out +
                              "/predictions --scans " + root_ + "/seq/velodyne -q ";
     const std::string label = root_ + "/seq/labels/000001.label";
@@ -139,13 +140,13 @@ TEST_F(NothingLost, HifEvalReplacesNoFileUnaskedAndNeverAnInput)
         for (const std::string ow : {"", " --overwrite"})
         {
             SCOPED_TRACE(flag + ow);
-            expectError(runApp("hif-eval", base + flag + " " + label + ow),
+            expectError(runInProcess("hif-eval", base + flag + " " + label + ow),
                         "would be one of the .label files of the ground truth (--labels)");
         }
     EXPECT_EQ(bytesOf(label), label_bytes);
     // Through a link to it, the same (real paths are compared).
     fs::create_symlink(label, root_ + "/link.label");
-    expectError(runApp("hif-eval", base + "--json " + root_ + "/link.label --overwrite"),
+    expectError(runInProcess("hif-eval", base + "--json " + root_ + "/link.label --overwrite"),
                 "would be one of the .label files of the ground truth (--labels)");
     EXPECT_EQ(bytesOf(label), label_bytes);
     // A user's own files stay unless --overwrite is given.
@@ -155,18 +156,19 @@ TEST_F(NothingLost, HifEvalReplacesNoFileUnaskedAndNeverAnInput)
         const std::string flag = name == "mine.json"  ? "--json "
                                  : name == "mine.png" ? "--png "
                                                       : "--classes-ply ";
-        expectError(runApp("hif-eval", base + flag + root_ + "/" + name),
+        expectError(runInProcess("hif-eval", base + flag + root_ + "/" + name),
                     "'" + root_ + "/" + name + "' already exists; pass --overwrite to replace it");
         EXPECT_EQ(bytesOf(root_ + "/" + name), "keep me");
-        const Result r = runApp("hif-eval", base + flag + root_ + "/" + name + " --overwrite");
+        const Result r =
+            runInProcess("hif-eval", base + flag + root_ + "/" + name + " --overwrite");
         EXPECT_EQ(r.code, 0) << r.output;
         EXPECT_NE(bytesOf(root_ + "/" + name), "keep me");
     }
     EXPECT_TRUE(entriesWith(root_, ".partial").empty());
     // Two outputs of one run are never one file.
-    expectError(
-        runApp("hif-eval", base + "--json " + root_ + "/x.out --classes-ply " + root_ + "/x.out"),
-        "two outputs of one run cannot be the same file");
+    expectError(runInProcess("hif-eval",
+                             base + "--json " + root_ + "/x.out --classes-ply " + root_ + "/x.out"),
+                "two outputs of one run cannot be the same file");
 }
 
 TEST_F(NothingLost, HifCleanAndKitti2rawlogNeverWriteOverAnInputOrAnotherOutput)
@@ -174,34 +176,35 @@ TEST_F(NothingLost, HifCleanAndKitti2rawlogNeverWriteOverAnInputOrAnotherOutput)
     const std::string rawlog = root_ + "/all.rawlog";
     const std::string bytes = bytesOf(rawlog);
     const std::string in = "-i " + rawlog + " -q -o " + root_ + "/o ";
-    expectError(runApp("hif-clean", in + "--rawlog-out " + rawlog + " --overwrite"),
+    expectError(runInProcess("hif-clean", in + "--rawlog-out " + rawlog + " --overwrite"),
                 "'" + rawlog + "' (--rawlog-out) is the input (-i)");
     fs::create_symlink(rawlog, root_ + "/same.rawlog");
-    expectError(runApp("hif-clean", in + "--rawlog-out " + root_ + "/same.rawlog --overwrite"),
-                "is the input (-i) '" + rawlog + "'");
+    expectError(
+        runInProcess("hif-clean", in + "--rawlog-out " + root_ + "/same.rawlog --overwrite"),
+        "is the input (-i) '" + rawlog + "'");
     EXPECT_EQ(bytesOf(rawlog), bytes);
-    expectError(runApp("hif-clean", in + "--rawlog-out " + root_ + "/o/static_map.ply"),
+    expectError(runInProcess("hif-clean", in + "--rawlog-out " + root_ + "/o/static_map.ply"),
                 "(--rawlog-out) is also the static_map.ply of -o: two outputs of one run cannot "
                 "be the same file");
-    expectError(runApp("hif-clean", in + "--rawlog-out " + root_ + "/o/predictions/x.rawlog"),
+    expectError(runInProcess("hif-clean", in + "--rawlog-out " + root_ + "/o/predictions/x.rawlog"),
                 "lie one inside the other");
     // A config kept in the output folder under an output's name.
     fs::create_directories(root_ + "/o2");
     fs::copy_file(HIF_SHARE_DIR "/config/kitti.ini", root_ + "/o2/summary.json");
     const std::string config = bytesOf(root_ + "/o2/summary.json");
-    expectError(runApp("hif-clean", "-i " + rawlog + " -q -o " + root_ + "/o2 -c " + root_ +
-                                        "/o2/summary.json --overwrite"),
+    expectError(runInProcess("hif-clean", "-i " + rawlog + " -q -o " + root_ + "/o2 -c " + root_ +
+                                              "/o2/summary.json --overwrite"),
                 "(the summary.json of -o) is the config");
     EXPECT_EQ(bytesOf(root_ + "/o2/summary.json"), config);
     EXPECT_FALSE(fs::exists(root_ + "/o"));
     // kitti2rawlog: never over a file of the sequence it reads.
     const std::string poses = bytesOf(root_ + "/seq/poses.txt");
-    expectError(runApp("kitti2rawlog",
-                       "-i " + root_ + "/seq -o " + root_ + "/seq/poses.txt --overwrite -q"),
+    expectError(runInProcess("kitti2rawlog",
+                             "-i " + root_ + "/seq -o " + root_ + "/seq/poses.txt --overwrite -q"),
                 "(-o) is the poses.txt of -i");
-    expectError(
-        runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + root_ + "/seq/velodyne/000009.bin -q"),
-        "would be one of the .bin files of the scans of -i");
+    expectError(runInProcess("kitti2rawlog",
+                             "-i " + root_ + "/seq -o " + root_ + "/seq/velodyne/000009.bin -q"),
+                "would be one of the .bin files of the scans of -i");
     EXPECT_EQ(bytesOf(root_ + "/seq/poses.txt"), poses);
     EXPECT_FALSE(fs::exists(root_ + "/seq/velodyne/000009.bin"));
 }
@@ -295,7 +298,7 @@ TEST_F(NothingLost, AStoppedGeneratorLeavesNoHalfSequenceAndAKilledOneIsCleanedU
         {
             // Nothing can clean up after kill -9; the next run does, and says so.
             EXPECT_EQ(entriesWith(root_, ".gen.partial-").size(), 1u);
-            const Result r = runApp("hif-synthetic-kitti", "-o " + target + " -n 2");
+            const Result r = runInProcess("hif-synthetic-kitti", "-o " + target + " -n 2");
             EXPECT_EQ(r.code, 0) << r.output;
             EXPECT_NE(r.output.find("left by a run that was stopped (process " +
                                     std::to_string(pid) + " is gone)"),
@@ -358,9 +361,9 @@ TEST(Georeferenced, AShiftedRealClipGivesTheSameClassesAndItsPointsPlusTheShift)
     const Eigen::Vector3d shift(630000, 5800000, 250);
     shiftedSequence(seq, d + "/utm", shift);
     const std::string flags = " -q --format both --classes-ply";
-    Result r = runApp("hif-clean", "-i " + seq + " -o " + d + "/local" + flags);
+    Result r = runInProcess("hif-clean", "-i " + seq + " -o " + d + "/local" + flags);
     ASSERT_EQ(r.code, 0) << r.output;
-    r = runApp("hif-clean", "-i " + d + "/utm -o " + d + "/shifted" + flags);
+    r = runInProcess("hif-clean", "-i " + d + "/utm -o " + d + "/shifted" + flags);
     ASSERT_EQ(r.code, 0) << r.output;
     // The same classes, scan for scan.
     for (const auto& e : fs::directory_iterator(d + "/local/predictions"))
@@ -393,10 +396,10 @@ TEST(Georeferenced, AShiftedRealClipGivesTheSameClassesAndItsPointsPlusTheShift)
     // hif-eval in UTM: the same scores, its cloud in float64.
     const auto score = [&](const std::string& scans, const std::string& out)
     {
-        const Result e =
-            runApp("hif-eval", "--labels " + seq + "/labels --predictions " + d + "/" + out +
-                                   "/predictions --scans " + scans + " -q --json " + d + "/" + out +
-                                   ".json " + "--classes-ply " + d + "/" + out + ".ply");
+        const Result e = runInProcess("hif-eval", "--labels " + seq + "/labels --predictions " + d +
+                                                      "/" + out + "/predictions --scans " + scans +
+                                                      " -q --json " + d + "/" + out + ".json " +
+                                                      "--classes-ply " + d + "/" + out + ".ply");
         EXPECT_EQ(e.code, 0) << e.output;
         return readJson(d + "/" + out + ".json")["total"];
     };
@@ -406,8 +409,8 @@ TEST(Georeferenced, AShiftedRealClipGivesTheSameClassesAndItsPointsPlusTheShift)
     for (const std::string name : {"local", "shifted"})
     {
         const Result c =
-            runApp("kitti2rawlog", "-i " + (name == "local" ? seq : d + "/utm") + " -o " + d +
-                                       "/dm_" + name + " --dynamicmap --last 1 -q");
+            runInProcess("kitti2rawlog", "-i " + (name == "local" ? seq : d + "/utm") + " -o " + d +
+                                             "/dm_" + name + " --dynamicmap --last 1 -q");
         ASSERT_EQ(c.code, 0) << c.output;
     }
     const auto dl = hif::io::readPcd(d + "/dm_local/pcd/000001.pcd");
@@ -424,13 +427,13 @@ TEST_F(NothingLost, AGridOriginOrAPoseOffTheGridIsRefused)
 {
     // An origin whose pillar index overflows would leave every point outside the grid.
     const std::string far_origin = ini("origin_x=0.0", "origin_x=3e9", "far_origin.ini");
-    expectError(runApp("hif-clean", "-i " + root_ + "/all.rawlog -o " + root_ +
-                                        "/far_origin -q -c " + far_origin),
+    expectError(runInProcess("hif-clean", "-i " + root_ + "/all.rawlog -o " + root_ +
+                                              "/far_origin -q -c " + far_origin),
                 "invalid origin_x = 3e+09 (must be such that |origin_x| / pillar_size < 2^31");
     // A pose 3e9 m away: its scan's points lie outside the grid, and the run says which.
     shiftedSequence(root_ + "/seq", root_ + "/far_pose", Eigen::Vector3d(3e9, 0, 0));
     const auto points = fs::file_size(root_ + "/seq/velodyne/000000.bin") / 16;
-    expectError(runApp("hif-clean", "-i " + root_ + "/far_pose -o " + root_ + "/fp -q"),
+    expectError(runInProcess("hif-clean", "-i " + root_ + "/far_pose -o " + root_ + "/fp -q"),
                 "scan 0 of '" + root_ + "/far_pose': " + std::to_string(points) +
                     " of its points lie outside the map's grid");
     EXPECT_FALSE(fs::exists(root_ + "/fp"));
@@ -440,12 +443,13 @@ TEST_F(NothingLost, AGridOriginOrAPoseOffTheGridIsRefused)
 TEST_F(NothingLost, DynamicMapFoldersAreReadAsStrictlyAsKittiFolders)
 {
     const std::string dm = root_ + "/dm";
-    ASSERT_EQ(runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + dm + " --dynamicmap -q").code, 0);
+    ASSERT_EQ(
+        runInProcess("kitti2rawlog", "-i " + root_ + "/seq -o " + dm + " --dynamicmap -q").code, 0);
     // Files that are not numbered scans are named and left out.
     fs::copy_file(dm + "/pcd/000000.pcd", dm + "/pcd/gt_cloud.pcd");
     fs::copy_file(dm + "/pcd/000001.pcd", dm + "/pcd/static_map.pcd");
     std::ofstream(dm + "/pcd/notes.txt") << "mine";
-    Result r = runApp("hif-clean", "-i " + dm + " -o " + root_ + "/dm_out -q");
+    Result r = runInProcess("hif-clean", "-i " + dm + " -o " + root_ + "/dm_out -q");
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("warning: '" + dm +
                             "/pcd' holds 3 file(s) not named as scans (NNNNNN.pcd), left out: "
@@ -454,7 +458,7 @@ TEST_F(NothingLost, DynamicMapFoldersAreReadAsStrictlyAsKittiFolders)
         << r.output;
     EXPECT_EQ(readJson(root_ + "/dm_out/summary.json")["scans"], 6);
     // Results are never written among the scans.
-    expectError(runApp("hif-clean", "-i " + dm + " -o " + dm + "/pcd -q --overwrite"),
+    expectError(runInProcess("hif-clean", "-i " + dm + " -o " + dm + "/pcd -q --overwrite"),
                 "would be one of the .pcd files of the scans of -i");
     // A scan without VIEWPOINT is not taken from the origin.
     {
@@ -463,7 +467,7 @@ TEST_F(NothingLost, DynamicMapFoldersAreReadAsStrictlyAsKittiFolders)
         pcd.erase(at, pcd.find('\n', at) + 1 - at);
         std::ofstream(dm + "/pcd/000002.pcd", std::ios::binary) << pcd;
     }
-    expectError(runApp("hif-clean", "-i " + dm + " -o " + root_ + "/dm_out2 -q --overwrite"),
+    expectError(runInProcess("hif-clean", "-i " + dm + " -o " + root_ + "/dm_out2 -q --overwrite"),
                 "pcd/000002.pcd' has no VIEWPOINT line");
     EXPECT_FALSE(fs::exists(root_ + "/dm_out2"));
     // An ascii scan with PCL's nan for invalid points is read, those points invalid.
@@ -484,7 +488,7 @@ TEST_F(NothingLost, DynamicMapFoldersAreReadAsStrictlyAsKittiFolders)
             else
                 f << c.x[i] << ' ' << c.y[i] << ' ' << c.z[i] << ' ' << c.intensity[i] << '\n';
     }
-    r = runApp("hif-clean", "-i " + dm + " -o " + root_ + "/dm_out3 -q --overwrite");
+    r = runInProcess("hif-clean", "-i " + dm + " -o " + root_ + "/dm_out3 -q --overwrite");
     ASSERT_EQ(r.code, 0) << r.output;
     const auto c3 = hif::io::readPcd(dm + "/pcd/000003.pcd");
     EXPECT_EQ(readJson(root_ + "/dm_out3/summary.json")["points_invalid"], (c3.size() + 9) / 10);
@@ -493,7 +497,7 @@ TEST_F(NothingLost, DynamicMapFoldersAreReadAsStrictlyAsKittiFolders)
 TEST_F(NothingLost, HifEvalReportsMissingPredictionsAndValuesThatAreNeitherStaticNorMoving)
 {
     const std::string out = root_ + "/eval_missing";
-    ASSERT_EQ(runApp("hif-clean", "-i " + root_ + "/all.rawlog -o " + out + " -q").code, 0);
+    ASSERT_EQ(runInProcess("hif-clean", "-i " + root_ + "/all.rawlog -o " + out + " -q").code, 0);
     fs::remove(out + "/predictions/000004.label");
     {
         // Two points of scan 1 hold a semantic class (40, road) and 0.
@@ -502,8 +506,9 @@ TEST_F(NothingLost, HifEvalReportsMissingPredictionsAndValuesThatAreNeitherStati
         const uint32_t values[2] = {40, 0};
         f.write(reinterpret_cast<const char*>(values), sizeof values);
     }
-    const Result r = runApp("hif-eval", "--labels " + root_ + "/seq/labels --predictions " + out +
-                                            "/predictions -q --json " + out + "/scores.json");
+    const Result r =
+        runInProcess("hif-eval", "--labels " + root_ + "/seq/labels --predictions " + out +
+                                     "/predictions -q --json " + out + "/scores.json");
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("1 label files in '" + root_ + "/seq/labels' have no prediction in '" +
                             out + "/predictions' (the first: 000004.label)"),
@@ -524,15 +529,16 @@ TEST_F(NothingLost, ExternalScanFilesThatAreMissingOrTruncatedAreNamed)
 {
     const std::string seq = copyOfSequence("external");
     const std::string rawlog = root_ + "/external.rawlog";
-    ASSERT_EQ(runApp("kitti2rawlog", "-i " + seq + " -o " + rawlog + " --external -q").code, 0);
+    ASSERT_EQ(runInProcess("kitti2rawlog", "-i " + seq + " -o " + rawlog + " --external -q").code,
+              0);
     const std::string bin = fs::absolute(seq + "/velodyne/000003.bin").string();
     const std::string keep = bytesOf(bin);
     fs::remove(bin);
-    expectError(runApp("hif-clean", "-i " + rawlog + " -o " + root_ + "/ext -q"),
+    expectError(runInProcess("hif-clean", "-i " + rawlog + " -o " + root_ + "/ext -q"),
                 "rawlog '" + rawlog + "', scan 3: its points are in the external file '" + bin +
                     "', which does not exist");
     std::ofstream(bin, std::ios::binary).write(keep.data(), std::streamsize(keep.size() - 8));
-    expectError(runApp("hif-clean", "-i " + rawlog + " -o " + root_ + "/ext -q"),
+    expectError(runInProcess("hif-clean", "-i " + rawlog + " -o " + root_ + "/ext -q"),
                 "scan 3: its points are in the external file '" + bin + "', which is " +
                     std::to_string(keep.size() - 8) + " bytes: not a whole number of points");
     EXPECT_FALSE(fs::exists(root_ + "/ext"));
@@ -542,9 +548,11 @@ TEST_F(NothingLost, HifIcpSlamSaysWhatItCouldNotDo)
 {
     // One scan: there is no trajectory to compare, and it says so (not "no pose").
     ASSERT_EQ(
-        runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + root_ + "/one.rawlog --last 0 -q").code,
+        runInProcess("kitti2rawlog", "-i " + root_ + "/seq -o " + root_ + "/one.rawlog --last 0 -q")
+            .code,
         0);
-    Result r = runApp("hif-icp-slam", "-i " + root_ + "/one.rawlog -o " + root_ + "/slam1 -q");
+    Result r =
+        runInProcess("hif-icp-slam", "-i " + root_ + "/one.rawlog -o " + root_ + "/slam1 -q");
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_NE(r.output.find("no trajectory error: the input holds one scan"), std::string::npos)
         << r.output;
@@ -561,8 +569,9 @@ TEST_F(NothingLost, HifIcpSlamSaysWhatItCouldNotDo)
             arch << *obs;
         }
     }
-    expectError(runApp("hif-icp-slam", "-i " + root_ + "/points.rawlog -o " + root_ + "/slam2 -q"),
-                "ICP could not align any of the 3 scans after the first (fewer than 3 points");
+    expectError(
+        runInProcess("hif-icp-slam", "-i " + root_ + "/points.rawlog -o " + root_ + "/slam2 -q"),
+        "ICP could not align any of the 3 scans after the first (fewer than 3 points");
     EXPECT_FALSE(fs::exists(root_ + "/slam2"));
 }
 
@@ -578,11 +587,11 @@ TEST_F(NothingLost, AStrayPointOrAFarPoseLeavesThePictureWholeAndBounded)
     for (const std::string mode : {"", "--online"})
     {
         SCOPED_TRACE(mode);
-        const Result ref =
-            runApp("hif-clean", "-i " + root_ + "/seq -o " + root_ + "/ref -q --overwrite " + mode);
+        const Result ref = runInProcess(
+            "hif-clean", "-i " + root_ + "/seq -o " + root_ + "/ref -q --overwrite " + mode);
         ASSERT_EQ(ref.code, 0) << ref.output;
-        const Result r =
-            runApp("hif-clean", "-i " + far + " -o " + root_ + "/stray_out -q --overwrite " + mode);
+        const Result r = runInProcess(
+            "hif-clean", "-i " + far + " -o " + root_ + "/stray_out -q --overwrite " + mode);
         ASSERT_EQ(r.code, 0) << r.output;
         EXPECT_NE(r.output.find("map.png shows the map's main area: 1 of"), std::string::npos)
             << r.output;
@@ -612,6 +621,7 @@ TEST_F(NothingLost, AStrayPointOrAFarPoseLeavesThePictureWholeAndBounded)
         std::ofstream out(jump + "/poses.txt");
         for (const auto& l : lines) out << l << '\n';
     }
+    // The program, not the job in process: its peak memory (summary.json) is the process's.
     const Result r = runApp("hif-clean", "-i " + jump + " -o " + root_ + "/jump_out -q");
     ASSERT_EQ(r.code, 0) << r.output;
     const auto pic = readJson(root_ + "/jump_out/summary.json")["picture"];
@@ -673,24 +683,24 @@ TEST_F(NothingLost, MessagesNameWhatIsWrong)
         p.replace(second, p.find(' ', second) - second, "inf");
         std::ofstream(seq + "/poses.txt") << p;
     }
-    expectError(runApp("hif-clean", "-i " + seq + " -o " + root_ + "/m -q"),
+    expectError(runInProcess("hif-clean", "-i " + seq + " -o " + root_ + "/m -q"),
                 "poses.txt' line 2: number 1 of 12, 'inf', is not finite");
     {
         std::string p = poses;
         p.insert(p.find('\n'), " x");
         std::ofstream(seq + "/poses.txt") << p;
     }
-    expectError(runApp("kitti2rawlog", "-i " + seq + " -o " + root_ + "/m.rawlog -q"),
+    expectError(runInProcess("kitti2rawlog", "-i " + seq + " -o " + root_ + "/m.rawlog -q"),
                 "poses.txt' line 1: 'x' after the 12 numbers of a 3x4 row-major matrix");
     // A folder as the config; a dangling link as the output folder; a missing folder.
-    expectError(runApp("hif-clean", in + "-o " + root_ + "/m -c " + root_),
+    expectError(runInProcess("hif-clean", in + "-o " + root_ + "/m -c " + root_),
                 "config '" + root_ + "' is a folder, not an .ini file");
     fs::create_symlink(root_ + "/nowhere/at/all", root_ + "/dangling");
-    expectError(runApp("hif-clean", in + "-o " + root_ + "/dangling"),
+    expectError(runInProcess("hif-clean", in + "-o " + root_ + "/dangling"),
                 "the output folder '" + root_ + "/dangling' is a symbolic link to '" + root_ +
                     "/nowhere/at/all', which does not exist");
-    expectError(runApp("hif-clean", in + "-o " + root_ + "/m --rawlog-out " + root_ +
-                                        "/no/such/folder/clean.rawlog"),
+    expectError(runInProcess("hif-clean", in + "-o " + root_ + "/m --rawlog-out " + root_ +
+                                              "/no/such/folder/clean.rawlog"),
                 "--rawlog-out '" + root_ + "/no/such/folder/clean.rawlog': the folder '" + root_ +
                     "/no/such/folder' does not exist");
     // A rawlog pose that is not finite: the scan would be lost, point by point.
@@ -708,17 +718,17 @@ TEST_F(NothingLost, MessagesNameWhatIsWrong)
             arch << *pose << *obs;
         }
     }
-    expectError(runApp("hif-clean", "-i " + root_ + "/nan_pose.rawlog -o " + root_ + "/m -q"),
+    expectError(runInProcess("hif-clean", "-i " + root_ + "/nan_pose.rawlog -o " + root_ + "/m -q"),
                 "scan 1 of '" + root_ + "/nan_pose.rawlog' has a pose that is not finite");
     // hif-eval with one folder for the labels and the predictions scores nothing real.
-    expectError(runApp("hif-eval", "--labels " + root_ + "/seq/labels --predictions " + root_ +
-                                       "/seq/labels/ -q"),
+    expectError(runInProcess("hif-eval", "--labels " + root_ + "/seq/labels --predictions " +
+                                             root_ + "/seq/labels/ -q"),
                 "--labels and --predictions are the same folder");
     // Map counts a handful at most, and whole numbers.
     for (const std::string count : {"1000000", "-1", "one"})
     {
         ini("CHeightIntervalMap_count=1", "CHeightIntervalMap_count=" + count, "count.ini");
-        expectError(runApp("hif-clean", in + "-o " + root_ + "/m -c " + root_ + "/count.ini"),
+        expectError(runInProcess("hif-clean", in + "-o " + root_ + "/m -c " + root_ + "/count.ini"),
                     "count.ini', [map]: CHeightIntervalMap_count = '" + count +
                         "' is not a whole number in [0, 16]");
     }

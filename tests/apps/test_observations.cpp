@@ -32,7 +32,7 @@ using nlohmann::json;
 using hif::test::clean;
 using Options = hif::jobs::CleanOptions;
 using hif::test::readJson;
-using hif::test::runApp;
+using hif::test::runInProcess;
 using hif::test::WorkDir;
 using hif::test::workDir;
 
@@ -71,7 +71,7 @@ TEST(HifClean, PlacesPointsAtTheRobotPoseComposedWithTheSensorPose)
         }
     }
     const auto r =
-        runApp("hif-clean", "-i " + d + "/scans.rawlog -o " + d + "/out -q --format pcd");
+        runInProcess("hif-clean", "-i " + d + "/scans.rawlog -o " + d + "/out -q --format pcd");
     ASSERT_EQ(r.code, 0) << r.output;
     EXPECT_FALSE(fs::exists(d + "/out/static_map.ply"));
     const hif::io::PcdCloud kept = hif::io::readPcd(d + "/out/static_map.pcd");

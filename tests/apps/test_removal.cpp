@@ -29,7 +29,7 @@
 using nlohmann::json;
 
 using hif::test::clean;
-using hif::test::runApp;
+using hif::test::runInProcess;
 using hif::test::WorkDir;
 using hif::test::workDir;
 
@@ -231,7 +231,7 @@ TEST_P(RealKitti, OfflineCleaningMeetsTheFloors)
     HIF_REQUIRE_KITTI_SEQUENCE(dir);
     const WorkDir work = workDir("kitti" + seq);
     const std::string& w = work.path();
-    auto r = runApp("kitti2rawlog", "-i " + dir + " -o " + w + "/scans.rawlog --external");
+    auto r = runInProcess("kitti2rawlog", "-i " + dir + " -o " + w + "/scans.rawlog --external");
     ASSERT_EQ(r.code, 0) << r.output;
     const json scores = cleanAndScoreInput(w + "/scans.rawlog", dir + "/labels", w + "/out");
     const json& s = scores["total"];

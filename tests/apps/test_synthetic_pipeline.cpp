@@ -45,7 +45,7 @@ using hif::test::toRawlog;
 using Options = hif::jobs::CleanOptions;
 using hif::test::expectError;
 using hif::test::readJson;
-using hif::test::runApp;
+using hif::test::runInProcess;
 using hif::test::WorkDir;
 using hif::test::workDir;
 
@@ -305,10 +305,10 @@ TEST_F(SyntheticPipeline, ThreadsAndHeldScansGiveIdenticalResults)
 TEST_F(SyntheticPipeline, RefusesToOverwriteAndNamesBadInput)
 {
     // The rawlog exists: kitti2rawlog does not replace it unless told to.
-    auto r = runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + root_ + "/scans.rawlog");
+    auto r = runInProcess("kitti2rawlog", "-i " + root_ + "/seq -o " + root_ + "/scans.rawlog");
     expectError(r, "already exists; pass --overwrite");
     // A missing input is named.
-    r = runApp("hif-clean", "-i " + root_ + "/nothing.rawlog -o " + root_ + "/x");
+    r = runInProcess("hif-clean", "-i " + root_ + "/nothing.rawlog -o " + root_ + "/x");
     expectError(r, "nothing.rawlog' does not exist");
     // A truncated rawlog is an error naming the file, not a silent partial map.
     {
@@ -317,7 +317,7 @@ TEST_F(SyntheticPipeline, RefusesToOverwriteAndNamesBadInput)
         std::ofstream out(root_ + "/truncated.rawlog", std::ios::binary);
         out.write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2 + 7));
     }
-    r = runApp("hif-clean", "-i " + root_ + "/truncated.rawlog -o " + root_ + "/trunc -q");
+    r = runInProcess("hif-clean", "-i " + root_ + "/truncated.rawlog -o " + root_ + "/trunc -q");
     expectError(r, "truncated.rawlog' is corrupt or truncated");
     // What MRPT found, without its exception frames.
     EXPECT_EQ(r.output.find("==== MRPT exception"), std::string::npos) << r.output;
@@ -333,7 +333,7 @@ TEST_F(SyntheticPipeline, RefusesToOverwriteAndNamesBadInput)
         std::ofstream out(bad + "/poses.txt", std::ios::trunc);
         out << first << "\n";
     }
-    r = runApp("kitti2rawlog", "-i " + bad + " -o " + bad + "/x.rawlog");
+    r = runInProcess("kitti2rawlog", "-i " + bad + " -o " + bad + "/x.rawlog");
     expectError(r, "poses.txt' has 1 poses for 20 scans");
     EXPECT_FALSE(fs::exists(bad + "/x.rawlog"));
     // A bad config value is named with its section.
@@ -345,8 +345,8 @@ TEST_F(SyntheticPipeline, RefusesToOverwriteAndNamesBadInput)
         ini.replace(ini.find("alpha=0.6"), 9, "alpha=0.4");
         std::ofstream(bad + "/bad.ini") << ini;
     }
-    r = runApp("hif-clean",
-               "-i " + root_ + "/scans.rawlog -o " + bad + "/out -c " + bad + "/bad.ini");
+    r = runInProcess("hif-clean",
+                     "-i " + root_ + "/scans.rawlog -o " + bad + "/out -c " + bad + "/bad.ini");
     expectError(r, "invalid alpha = 0.4");
 }
 
@@ -376,21 +376,22 @@ TEST_F(SyntheticPipeline, DynamicMapFolderLayoutIsReadAndItsOutputWritten)
             f << w.x() << " " << w.y() << " " << w.z() << " " << p[k + 3] << "\n";
         }
     }
-    const auto r = runApp("hif-clean", "-i " + dm + " -o " + dm + "/out -q");
+    const auto r = runInProcess("hif-clean", "-i " + dm + " -o " + dm + "/out -q");
     ASSERT_EQ(r.code, 0) << r.output;
     ASSERT_TRUE(fs::exists(dm + "/hif_output.pcd")) << r.output;
     const json sum = readJson(dm + "/out/summary.json");
     EXPECT_EQ(sum["scans"], 20);
     EXPECT_EQ(hif::io::readPcd(dm + "/hif_output.pcd").x.size(),
               sum["points_kept"].get<std::size_t>());
-    const auto e = runApp("hif-eval", "--labels " + root_ + "/seq/labels --predictions " + dm +
-                                          "/out/predictions --json " + dm + "/scores.json");
+    const auto e =
+        runInProcess("hif-eval", "--labels " + root_ + "/seq/labels --predictions " + dm +
+                                     "/out/predictions --json " + dm + "/scores.json");
     ASSERT_EQ(e.code, 0) << e.output;
     const json s = readJson(dm + "/scores.json")["total"];
     EXPECT_GE(s["SA"].get<double>(), 99.0);
     EXPECT_GE(s["DA"].get<double>(), 95.0);
     // A second run does not replace the benchmark output without --overwrite.
-    const auto again = runApp("hif-clean", "-i " + dm + " -o " + dm + "/out2 -q");
+    const auto again = runInProcess("hif-clean", "-i " + dm + " -o " + dm + "/out2 -q");
     expectError(again, "hif_output.pcd' already exists");
 }
 
@@ -460,9 +461,9 @@ TEST_F(SyntheticPipeline, KittiAndDynamicMapFoldersGiveTheRawlogsResult)
     EXPECT_LT(differ, points / 1000) << differ << " of " << points << " points differ";
     // A folder that is neither layout is named as such; a bad --format is refused.
     fs::create_directories(root_ + "/neither");
-    r = runApp("hif-clean", "-i " + root_ + "/neither -o " + root_ + "/neither/out");
+    r = runInProcess("hif-clean", "-i " + root_ + "/neither -o " + root_ + "/neither/out");
     expectError(r, "is a folder with neither velodyne/, pcd/, poses.txt nor keyframes");
-    r = runApp("hif-clean", "-i " + root_ + "/seq -o " + root_ + "/bad_format --format las");
+    r = runInProcess("hif-clean", "-i " + root_ + "/seq -o " + root_ + "/bad_format --format las");
     expectError(r, "--format");
     EXPECT_FALSE(fs::exists(root_ + "/bad_format"));
 }
@@ -539,9 +540,9 @@ TEST_F(SyntheticPipeline, Kitti2rawlogWritesTheTrajectoryAsOdometryAndRealTimes)
     fs::remove_all(d);
     fs::create_directories(d);
     const double start = 1317386400.0;  // 2011-09-30 12:40:00 UTC
-    auto r = runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + d +
-                                        "/odo.rawlog -q --odometry "
-                                        "--start-time 1317386400");
+    auto r = runInProcess("kitti2rawlog", "-i " + root_ + "/seq -o " + d +
+                                              "/odo.rawlog -q --odometry "
+                                              "--start-time 1317386400");
     ASSERT_EQ(r.code, 0) << r.output;
     const hif::io::KittiSequence seq(root_ + "/seq");
     std::vector<mrpt::obs::CObservationOdometry::Ptr> odometry;
@@ -582,13 +583,13 @@ TEST_F(SyntheticPipeline, Kitti2rawlogWritesTheTrajectoryAsOdometryAndRealTimes)
     const json with = readJson(d + "/clean/summary.json");
     EXPECT_EQ(with["points_kept"], readJson(d + "/plain/summary.json")["points_kept"]);
     EXPECT_EQ(with["skipped_objects"], 0);
-    expectError(runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + d +
-                                           "/x -q --dynamicmap "
-                                           "--odometry"),
+    expectError(runInProcess("kitti2rawlog", "-i " + root_ + "/seq -o " + d +
+                                                 "/x -q --dynamicmap "
+                                                 "--odometry"),
                 "--odometry and --start-time apply to rawlogs");
-    expectError(runApp("kitti2rawlog", "-i " + root_ + "/seq -o " + d +
-                                           "/y.rawlog -q "
-                                           "--start-time -5"),
+    expectError(runInProcess("kitti2rawlog", "-i " + root_ + "/seq -o " + d +
+                                                 "/y.rawlog -q "
+                                                 "--start-time -5"),
                 "--start-time");
 }
 

@@ -109,20 +109,21 @@ inline std::string errorMessage(const std::exception& e)
     return e.what();
 }
 
-/** The whole main() of an app: from the start, a run stopped by SIGINT, SIGTERM or SIGHUP
- *  removes its partial outputs (removePartialsOnInterrupt()); parses the command line into a
- *  `Cli` (which holds a TCLAP `cmd` with its arguments), calls `run(cli)`, and turns any
- *  exception into "<tag> error: <what>" on stderr and exit code 1. MRPT's TCLAP reports a bad
- * command line and --help / --version itself and returns false from parse(): then the app does not
- * run, and exits with 0 for --help / --version, 1 for a bad command line. */
-template <typename Cli, typename Run>
-int cliMain(const char* tag, int argc, char** argv, Run run)
+/** An app's command line run: `argv` parsed into a `CommandLine` (which holds a TCLAP `cmd`
+ *  with the app's flags and gives its `Job`'s options()), and the job run with its log on
+ *  `out`; any exception becomes "<tag> error: <what>" on `err` and code 1. MRPT's TCLAP reports
+ *  a bad command line and --help / --version itself (on std::cout and std::cerr) and returns
+ *  false from parse(): then the job does not run, and the code is 0 for --help / --version, 1
+ *  for a bad command line. Returns the app's exit code. The tests run the apps this way in
+ *  process (tests/apps/job_runner.h). */
+template <typename CommandLine>
+int runCommandLine(int argc, const char* const* argv, std::ostream& out, std::ostream& err)
 {
-    removePartialsOnInterrupt(tag);
+    using Job = typename CommandLine::Job;
     try
     {
-        Cli cli;
-        if (!cli.cmd.parse(argc, argv))
+        CommandLine cli;
+        if (!cli.cmd.parse(argc, const_cast<const char**>(argv)))
         {
             for (int i = 1; i < argc; ++i)
             {
@@ -131,16 +132,27 @@ int cliMain(const char* tag, int argc, char** argv, Run run)
             }
             return 1;
         }
-        const int code = run(cli);
-        if (code != 0) endHereIfStopped();
-        return code;
+        Job(cli.options()).run(out);
+        return 0;
     }
     catch (const std::exception& e)
     {
         endHereIfStopped();
-        std::cerr << tag << " error: " << errorMessage(e) << "\n";
+        err << Job::kTag << " error: " << errorMessage(e) << "\n";
         return 1;
     }
+}
+
+/** The whole main() of an app: from the start, a run stopped by SIGINT, SIGTERM or SIGHUP
+ *  removes its partial outputs (removePartialsOnInterrupt()); then runCommandLine() on
+ *  std::cout and std::cerr. */
+template <typename CommandLine>
+int cliMain(int argc, char** argv)
+{
+    removePartialsOnInterrupt(CommandLine::Job::kTag);
+    const int code = runCommandLine<CommandLine>(argc, argv, std::cout, std::cerr);
+    if (code != 0) endHereIfStopped();
+    return code;
 }
 
 }  // namespace hif::apps
