@@ -10,19 +10,17 @@
 
 #include <exception>
 #include <functional>
-#include <iostream>
 #include <sstream>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "app_runner.h"
 #include "hif/apps/Cli.h"
-#include "hif/jobs/CleanCommandLine.h"
-#include "hif/jobs/EvaluateCommandLine.h"
-#include "hif/jobs/IcpSlamCommandLine.h"
-#include "hif/jobs/KittiToRawlogCommandLine.h"
-#include "hif/jobs/SyntheticKittiCommandLine.h"
+#include "hif/jobs/Clean.h"
+#include "hif/jobs/Evaluate.h"
+#include "hif/jobs/IcpSlam.h"
+#include "hif/jobs/KittiToRawlog.h"
+#include "hif/jobs/SyntheticKitti.h"
 
 namespace hif::test
 {
@@ -46,86 +44,15 @@ Result runJob(const Job& job)
 /** The words of a command line as a POSIX shell splits them, for the tests' flags: blanks
  *  separate words, and single or double quotes group them. Throws std::invalid_argument on what
  *  a shell would read otherwise (escapes, variables, redirections, an open quote). */
-inline std::vector<std::string> shellWords(const std::string& line)
-{
-    std::vector<std::string> words;
-    std::string word;
-    bool in_word = false;
-    char quote = 0;
-    for (const char c : line)
-    {
-        if (quote != 0)
-        {
-            if (c == quote)
-                quote = 0;
-            else
-                word += c;
-        }
-        else if (c == '\'' || c == '"')
-        {
-            quote = c;
-            in_word = true;
-        }
-        else if (c == ' ' || c == '\t' || c == '\n')
-        {
-            if (in_word) words.push_back(word);
-            word.clear();
-            in_word = false;
-        }
-        else if (std::string("\\$`<>|;&*?").find(c) != std::string::npos)
-            throw std::invalid_argument("shellWords: '" + std::string(1, c) + "' in: " + line);
-        else
-        {
-            word += c;
-            in_word = true;
-        }
-    }
-    if (quote != 0) throw std::invalid_argument("shellWords: an open quote in: " + line);
-    if (in_word) words.push_back(word);
-    return words;
-}
+std::vector<std::string> shellWords(const std::string& line);
 
 /** `app args` run in process as its binary runs it (hif::apps::runCommandLine() with the
- *  app's command line): its exit code, and what it wrote on std::cout and std::cerr (the job's
- *  log, TCLAP's messages, the error line), interleaved, as runApp() gives them. Not in it: the
- *  progress line (on the C stream stderr), the signals' handling and the allocator's settings
- *  of main(); the tests of those run the programs. */
-inline Result runInProcess(const std::string& app, const std::string& args)
-{
-    const std::vector<std::string> words = shellWords(args);
-    const std::string program = kBin + "/" + app;  // argv[0] as the program's
-    std::vector<const char*> argv{program.c_str()};
-    for (const std::string& w : words) argv.push_back(w.c_str());
-    const int argc = static_cast<int>(argv.size());
-    argv.push_back(nullptr);
-
-    std::stringstream text;
-    struct Redirect
-    {
-        std::streambuf* out;
-        std::streambuf* err;
-        ~Redirect()
-        {
-            std::cout.rdbuf(out);
-            std::cerr.rdbuf(err);
-        }
-    } redirect{std::cout.rdbuf(text.rdbuf()), std::cerr.rdbuf(text.rdbuf())};
-
-    int code = 0;
-    if (app == "hif-clean")
-        code = apps::runCommandLine<jobs::CleanCommandLine>(argc, argv.data(), text, text);
-    else if (app == "hif-eval")
-        code = apps::runCommandLine<jobs::EvaluateCommandLine>(argc, argv.data(), text, text);
-    else if (app == "hif-icp-slam")
-        code = apps::runCommandLine<jobs::IcpSlamCommandLine>(argc, argv.data(), text, text);
-    else if (app == "hif-synthetic-kitti")
-        code = apps::runCommandLine<jobs::SyntheticKittiCommandLine>(argc, argv.data(), text, text);
-    else if (app == "kitti2rawlog")
-        code = apps::runCommandLine<jobs::KittiToRawlogCommandLine>(argc, argv.data(), text, text);
-    else
-        throw std::invalid_argument("runInProcess: no app " + app);
-    return {code, text.str()};
-}
+ *  app's command line, argv[0] the program's path): its exit code, and what it wrote on
+ *  std::cout and std::cerr (the job's log, TCLAP's messages, the error line), interleaved, as
+ *  runApp() gives them. Not in it: the progress line (on the C stream stderr), the signals'
+ *  handling and the allocator's settings of main(); the tests of those run the programs.
+ *  (job_runner.cpp: the five command lines are compiled there once.) */
+Result runInProcess(const std::string& app, const std::string& args);
 
 /** hif-clean -i `input` -o `output` -q, with what `set` changes. */
 inline Result clean(const std::string& input, const std::string& output,
