@@ -37,7 +37,7 @@ Result runJob(const Job& job)
     }
     catch (const std::exception& e)
     {
-        return {1, log.str() + Job::kTag + " error: " + hif::apps::errorMessage(e) + "\n"};
+        return {1, log.str() + hif::apps::errorLine(Job::kTag, e)};
     }
 }
 

@@ -109,9 +109,15 @@ inline std::string errorMessage(const std::exception& e)
     return e.what();
 }
 
+/** The line an app ends with when `e` stopped it: "<tag> error: <what>" (errorMessage()). */
+inline std::string errorLine(const char* tag, const std::exception& e)
+{
+    return std::string(tag) + " error: " + errorMessage(e) + "\n";
+}
+
 /** An app's command line run: `argv` parsed into a `CommandLine` (which holds a TCLAP `cmd`
  *  with the app's flags and gives its `Job`'s options()), and the job run with its log on
- *  `out`; any exception becomes "<tag> error: <what>" on `err` and code 1. MRPT's TCLAP reports
+ *  `out`; any exception becomes its errorLine() on `err` and code 1. MRPT's TCLAP reports
  *  a bad command line and --help / --version itself (on std::cout and std::cerr) and returns
  *  false from parse(): then the job does not run, and the code is 0 for --help / --version, 1
  *  for a bad command line. Returns the app's exit code. The tests run the apps this way in
@@ -138,7 +144,7 @@ int runCommandLine(int argc, const char* const* argv, std::ostream& out, std::os
     catch (const std::exception& e)
     {
         endHereIfStopped();
-        err << Job::kTag << " error: " << errorMessage(e) << "\n";
+        err << errorLine(Job::kTag, e);
         return 1;
     }
 }
