@@ -96,17 +96,23 @@ InsertStats PillarGrid::insertScan(const PointsView& pts, const Eigen::Isometry3
 {
     bool estimated = false, checked = false;
     std::optional<std::string> contradiction;
+    // The model estimated from this scan (validated) is the one used from here on: the next
+    // check in kSensorCheckInterval scans.
+    auto adopt = [&](std::optional<SensorModel> m)
+    {
+        useSensorModel(std::move(m));
+        scans_since_check_ = 0;
+        estimated_from_points_ = pts.size;
+        estimated = true;
+    };
     if (params_.sensor_from_scans)
     {
         if (!sensor_)
         {
-            if (auto m = SensorModel::estimate(pts))  // validated
+            if (auto m = SensorModel::estimate(pts))
             {
-                useSensorModel(std::move(m));
-                scans_since_check_ = 0;  // estimated from this scan: checked in 50
+                adopt(std::move(m));
                 settle_scans_left_ = kSensorSettleScans;
-                estimated_from_points_ = pts.size;
-                estimated = true;
             }
         }
         else if (settle_scans_left_ > 0)
@@ -118,13 +124,7 @@ InsertStats PillarGrid::insertScan(const PointsView& pts, const Eigen::Isometry3
             if (pts.size > estimated_from_points_ + estimated_from_points_ / 10)
             {
                 auto m = SensorModel::estimate(pts);
-                if (m && sensor_->seesLessThan(*m))
-                {
-                    useSensorModel(std::move(m));
-                    scans_since_check_ = 0;
-                    estimated_from_points_ = pts.size;
-                    estimated = true;
-                }
+                if (m && sensor_->seesLessThan(*m)) adopt(std::move(m));
             }
         }
         else if (++scans_since_check_ >= kSensorCheckInterval)
