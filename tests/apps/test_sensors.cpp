@@ -373,6 +373,36 @@ TEST(Sensors, EachSensorsClipIsCleanedWithTheDefaults)
     EXPECT_EQ(readJson(seq + "/wrong/summary.json")["sensor"]["contradictions"].size(), 1u);
 }
 
+// A 16-beam LiDAR driving past vegetation that beams enter (--foliage: canopies, bushes,
+// hedges). Beams 2 degrees apart meet a bush's top with one ring, and the ring above passes
+// over it. Another scan whose beam toward such a point fell between its rings in its image
+// answered with its nearest beam, often the one above, which passed over the bush and returned
+// from behind: the bush looked seen through. The point's own scan shows where its surface ends
+// (its next beam up returned beyond it), and such a beam now settles nothing without the next
+// scan in agreeing (doc/algorithm.md, "A neighbouring beam past the surface's edge"). Measured
+// on this clip, before and after: vegetation kept 95.23 and 97.33 %, SA 98.78 and 99.21, the
+// people removed 84.56 % both times.
+TEST(Sensors, ASixteenBeamLidarKeepsTheBushesItsNeighbouringBeamsPassOver)
+{
+    if (HIF_SANITIZED) GTEST_SKIP() << "removal floors: the plain suite (scripts/test.sh)";
+    const WorkDir work = workDir("vlp16_foliage_" + std::to_string(getpid()));
+    const std::string seq = work.path() + "/vlp-16_walkers";
+    auto r = synthesize(seq, 10,
+                        [&](hif::jobs::SyntheticKittiOptions& o)
+                        {
+                            o.scene = "walkers";
+                            o.sensor = "vlp-16";
+                            o.foliage = true;
+                        });
+    ASSERT_EQ(r.code, 0) << r.output;
+    const json s = cleanAndScoreInput(seq, seq + "/labels", seq + "/out", noPicture);
+    const json& leaves = s["per_static_class"]["vegetation"];
+    ASSERT_GT(leaves["static_total"].get<int>(), 20000) << s["per_static_class"];
+    EXPECT_GE(leaves["SA"].get<double>(), 96.8);
+    EXPECT_GE(s["total"]["SA"].get<double>(), 99.1);
+    EXPECT_GE(s["per_moving_class"]["moving-person"]["DA"].get<double>(), 84.0);
+}
+
 // A recording whose first scan is part of a sweep (a driver's first message, a quarter of the
 // azimuth): the model estimated from it gives way to the next scan's, and hif-clean says so.
 TEST(Sensors, AFirstScanThatIsPartOfASweepGivesWayToTheNextWholeOne)

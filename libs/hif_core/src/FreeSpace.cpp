@@ -92,11 +92,22 @@ struct Look
 {
     View view;
     float range;  ///< of the beam through the point (that of its cell, else the nearest one)
+    /** The beam taken is a neighbouring row's on a side where the point's surface ends
+     *  (SurfaceAround): it may have passed beside the surface rather than through it. */
+    bool past_edge = false;
+};
+/** Where the surface of a point goes on in the image of the scan it was seen in: whether the
+ *  next beam up its column, and the next one down, returned on it (surfaceAround()). */
+struct SurfaceAround
+{
+    bool up = true;
+    bool down = true;
 };
 /** What scan `j` saw at a world point in its `cell`: from the beam of that cell, else (none
- *  there, unless `own_beam_only`) from the nearest one around it. */
+ *  there, unless `own_beam_only`) from the nearest one around it, which is past the edge of
+ *  the point's surface where `surface` says that it ends on that beam's side. */
 Look look(const Judge& j, const ImageCell& cell, const RangeMargin& margin,
-          bool own_beam_only = false)
+          bool own_beam_only = false, const SurfaceAround* surface = nullptr)
 {
     const int r = cell.r, c = cell.c;
     const double d = cell.d;
@@ -108,6 +119,7 @@ Look look(const Judge& j, const ImageCell& cell, const RangeMargin& margin,
     if (own_beam_only && !std::isfinite(own)) return {View::None, own};
     float e = own;
     bool near = false;
+    bool past_edge = false;
     int best = std::numeric_limits<int>::max();
     const int cols[3] = {wrapCol(c - 1, l.cols), c, wrapCol(c + 1, l.cols)};
     for (int dr = -1; dr <= 1 && !(near && std::isfinite(own)); ++dr)
@@ -125,12 +137,13 @@ Look look(const Judge& j, const ImageCell& cell, const RangeMargin& margin,
             {
                 best = dist;
                 e = f;
+                past_edge = surface && (dr > 0 ? !surface->up : dr < 0 && !surface->down);
             }
         }
     }
     if (!std::isfinite(e)) return {View::None, e};  // no beam near the point's direction
-    if (e <= d + m) return {e > d - m ? View::Occupied : View::None, e};
-    return {near ? View::Vetoed : View::Free, e};  // passed, unless something is near it
+    if (e <= d + m) return {e > d - m ? View::Occupied : View::None, e, past_edge};
+    return {near ? View::Vetoed : View::Free, e, past_edge};  // passed, unless something is near it
 }
 
 /** Where a beam toward a world point in `cell` returned (`range`, +inf: nothing), relative
@@ -195,6 +208,24 @@ int nextInColumn(const Judge& j, int row, int col, int dir, float& range)
     }
     range = std::numeric_limits<float>::infinity();
     return -1;
+}
+
+/** Where the surface of world point `p` goes on in the image of scan `own` (the scan it was
+ *  seen in): up its column, where the next beam up (within one and a half beam spacings,
+ *  nextInColumn()) returned within the margin of it; down, the same. Where that beam returned
+ *  beyond the margin, in front of it or not at all, the surface ends between the two beams: the
+ *  top of a bush or a hedge, a kerb, a ring's far edge on terrain. */
+SurfaceAround surfaceAround(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& margin)
+{
+    const auto cell = cellOf(own, p);
+    if (!cell) return {};
+    const double m = margin.at(cell->d);
+    auto goesOn = [&](int dir)
+    {
+        float f = 0.0f;
+        return nextInColumn(own, cell->r, cell->c, dir, f) >= 0 && std::abs(f - cell->d) <= m;
+    };
+    return {goesOn(1), goesOn(-1)};
 }
 
 /** Whether world point `p` lies on a surface that runs along the beams of scan `own` (the
@@ -634,6 +665,8 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     };
     std::vector<Seen> seen(judges.size());
     std::vector<ImageCell> cells(judges.size());
+    // A ringed sensor: the next return up or down a column of a scan's image is its next beam.
+    const bool rings = grid.sensorModel() && grid.sensorModel()->hasRings();
 
     // The scan's own image (groundHidden(), alongBeams(), facesBeams()), built when the test
     // does not hold the scan.
@@ -705,6 +738,26 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             if (std::abs(offset) <= margin.base) return false;
             return facesTheBeams();
         };
+        // Where the point's surface goes on in its own scan (surfaceAround()), asked once per
+        // point where a judge's own cell toward it holds no return. On a surface that faces
+        // the beams, a neighbouring beam returns where one toward the point would (facesBeams()):
+        // it goes on everywhere there.
+        std::optional<SurfaceAround> around;
+        auto surfaceAt = [&]() -> const SurfaceAround&
+        {
+            if (!around)
+                around = facesTheBeams() ? SurfaceAround{} : surfaceAround(ownJudge(), p_w, margin);
+            return *around;
+        };
+        // A judge whose own cell toward the point held no return and whose neighbouring row's
+        // beam, on a side where the point's surface ends, returned beyond it: that beam may
+        // have passed beside the surface (over a bush, under a hedge's foot, a ring's far edge
+        // on terrain), not through where it was. Such a "free" settles a side only with the
+        // next judge in that has an opinion: free too, gone; occupied, held. A mover that
+        // left is seen through by both; a static edge is seen occupied again by a judge whose
+        // beam meets it. Only with rings (the next beam up a column; in a rosette's image the
+        // next return there is no neighbouring beam of the same sweep).
+        bool unconfirmed = false;
         // Whether judge j settles this side: gone, or occupied (`at`: where its beam returned,
         // from the point, and the margin there).
         BeamOffset at{0.0, 0.0};
@@ -712,7 +765,14 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         {
             const ImageCell* c = cellIn(j);
             if (!c) return false;
-            const Look v = look(judges[j], *c, margin);
+            const bool own_empty = !std::isfinite(judges[j].at(c->r, c->c));
+            const Look v =
+                look(judges[j], *c, margin, false, rings && own_empty ? &surfaceAt() : nullptr);
+            if (v.view == View::Free && v.past_edge && !unconfirmed)
+            {
+                unconfirmed = true;
+                return false;
+            }
             judged = judged || v.view != View::None;
             gone = v.view == View::Free;
             at = {static_cast<double>(v.range) - c->d, margin.at(c->d)};
@@ -725,6 +785,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         const std::size_t settled_before = settledAt(self_pos, earlier, settlesSide);
         const BeamOffset at_before = settled_before ? at : BeamOffset{0.0, 0.0};
         if (gone) return Verdict::Gone;
+        unconfirmed = false;
         const std::size_t settled_after = settledAt(judges.size() - self_pos, later, settlesSide);
         const BeamOffset at_after = settled_after ? at : BeamOffset{0.0, 0.0};
         if (gone) return Verdict::Gone;
@@ -1029,8 +1090,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // ring meets it 0.4 m above the road, the road at its foot behind it; within half the
     // clearance of that line, marked only on its own evidence as mark() does, it is the ground
     // at the foot of what stands there). Without rings the next return down an image column
-    // is no next beam of the same sweep.
-    const bool rings = grid.sensorModel() && grid.sensorModel()->hasRings();
+    // is no next beam of the same sweep (`rings`, above).
     // carryOn() runs only with a ringed sensor where the judges lie on one side of the scan in
     // time.
     const bool carry_on = rings && (self_pos == 0 || self_pos == judges.size());
