@@ -334,9 +334,9 @@ TEST(RealKittiRings, SparserCopiesOf04KeepTheirRingsAndLabelsAndAreCleaned)
 // The tool's choice of rings (hif_decimate_rings ... k phase, scripts/rings.sh with
 // HIF_RINGS_PHASES=all): the k copies of every k-th ring, from ring 0 to ring k-1, split each
 // scan's points and labels between them, nothing left out and nothing twice; and each is
-// cleaned. The floors are a little under today's figures from each first ring (SA 97.85,
-// 97.86, 97.88, 98.09, and 97.62, 97.62, 97.68, 97.90 before a neighbouring beam past the edge
-// of a point's surface needed the next judge to agree; AA 94.93, 94.64, 93.28, 93.85; AA 94.20,
+// cleaned. The floors are a little under today's figures from each first ring (SA 97.96,
+// 97.96, 97.98, 98.15, and 97.62, 97.62, 97.68, 97.90 before a judge's beam past the edge of
+// a point's surface needed the next judge to agree; AA 94.98, 94.62, 93.26, 93.87; AA 94.20,
 // 93.20, 92.55, 93.25 before a mover's lowest ring at the road's height went with it): every
 // choice is as much a 16-beam LiDAR, and which rings a held-out copy keeps is not known.
 TEST(RealKittiRings, TheCopiesFromEachFirstRingSplitEveryScan)
@@ -385,7 +385,7 @@ TEST(RealKittiRings, TheCopiesFromEachFirstRingSplitEveryScan)
         SCOPED_TRACE("from ring " + std::to_string(phase));
         const std::string seq = work.path() + "/from" + std::to_string(phase);
         const json s = cleanAndScoreInput(seq, seq + "/labels", seq + "_out", noPicture)["total"];
-        EXPECT_GE(s["SA"].get<double>(), 97.7) << s;
+        EXPECT_GE(s["SA"].get<double>(), 97.8) << s;
         EXPECT_GE(s["AA"].get<double>(), aa_floor[phase]) << s;
     }
 }

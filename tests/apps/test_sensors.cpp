@@ -263,8 +263,9 @@ TEST(HifSyntheticKitti, RoadsideFurnitureIsAddedAndTheRestOfTheSceneKept)
 // 76.0 %, 79.9 and 74.6 % before a lowest return on a face above the ground was no ground; the
 // rosette's SA 97.3 / 98.9 / 98.8 % and its cars, walkers and bicyclists 58.1, 72.5 and 63.4 %,
 // against 77.5 / 84.6 / 84.6 % and 67.0, 83.0 and 74.8 % before a sensor without rings started
-// new pillars from 0.5). And a model given in the config: used from the start, and a wrong one
-// warned of.
+// new pillars from 0.5; the bicyclists on an HDL-32E 80.3 %, 82.0 % before a judge's beam past
+// the edge of a point's surface asked the next judge to agree). And a model given in the
+// config: used from the start, and a wrong one warned of.
 TEST(Sensors, EachSensorsClipIsCleanedWithTheDefaults)
 {
     if (HIF_SANITIZED) GTEST_SKIP() << "removal floors: the plain suite (scripts/test.sh)";
@@ -275,7 +276,7 @@ TEST(Sensors, EachSensorsClipIsCleanedWithTheDefaults)
         double street_sa, car_da, walkers_sa, person_da, cyclists_sa, bicyclist_da;
     };
     for (const Floors& f : std::vector<Floors>{{"hdl-64e", 99.0, 99.3, 99.6, 88.0, 99.6, 93.0},
-                                               {"hdl-32e", 98.4, 98.3, 99.5, 84.0, 99.6, 80.5},
+                                               {"hdl-32e", 98.4, 98.3, 99.5, 84.0, 99.6, 79.8},
                                                {"vlp-16", 97.0, 95.0, 99.2, 83.0, 99.4, 74.5},
                                                {"os1-128", 98.8, 99.3, 99.5, 89.0, 99.5, 93.0},
                                                {"mid-70", 96.8, 57.5, 98.4, 72.0, 98.3, 62.5}})
@@ -380,8 +381,8 @@ TEST(Sensors, EachSensorsClipIsCleanedWithTheDefaults)
 // from behind: the bush looked seen through. The point's own scan shows where its surface ends
 // (its next beam up returned beyond it), and such a beam now settles nothing without the next
 // scan in agreeing (doc/algorithm.md, "A neighbouring beam past the surface's edge"). Measured
-// on this clip, before and after: vegetation kept 95.23 and 97.33 %, SA 98.78 and 99.21, the
-// people removed 84.56 % both times.
+// on this clip, before and after: vegetation kept 95.23 and 97.99 %, SA 98.78 and 99.34, the
+// people removed 84.56 and 84.38 %.
 TEST(Sensors, ASixteenBeamLidarKeepsTheBushesItsNeighbouringBeamsPassOver)
 {
     if (HIF_SANITIZED) GTEST_SKIP() << "removal floors: the plain suite (scripts/test.sh)";
@@ -398,8 +399,8 @@ TEST(Sensors, ASixteenBeamLidarKeepsTheBushesItsNeighbouringBeamsPassOver)
     const json s = cleanAndScoreInput(seq, seq + "/labels", seq + "/out", noPicture);
     const json& leaves = s["per_static_class"]["vegetation"];
     ASSERT_GT(leaves["static_total"].get<int>(), 20000) << s["per_static_class"];
-    EXPECT_GE(leaves["SA"].get<double>(), 96.8);
-    EXPECT_GE(s["total"]["SA"].get<double>(), 99.1);
+    EXPECT_GE(leaves["SA"].get<double>(), 97.5);
+    EXPECT_GE(s["total"]["SA"].get<double>(), 99.2);
     EXPECT_GE(s["per_moving_class"]["moving-person"]["DA"].get<double>(), 84.0);
 }
 

@@ -228,6 +228,21 @@ SurfaceAround surfaceAround(const Judge& own, const Eigen::Vector3d& p, const Ra
     return {goesOn(1), goesOn(-1)};
 }
 
+/** For a ringed sensor (`ring_tan`: the tangents of its beams' elevations, ascending), whether
+ *  the beam in row `row` of judge `j`'s image passed above world point `p` (true) or below it
+ *  (false), by where the sensor's ring lies in that row; none when no ring lies in it (a row
+ *  between two rings, or one whose return came from a ring estimated just outside it). */
+std::optional<bool> beamAbove(const Judge& j, int row, const Eigen::Vector3d& p,
+                              const std::vector<double>& ring_tan)
+{
+    const RangeImageLayout& l = *j.layout;
+    const double lo = l.tan_min + row * l.tan_res;
+    const auto ring = std::lower_bound(ring_tan.begin(), ring_tan.end(), lo);
+    if (ring == ring_tan.end() || *ring >= lo + l.tan_res) return std::nullopt;
+    const Eigen::Vector3d q = j.Rt * (p - j.t);
+    return *ring * std::hypot(q.x(), q.y()) > q.z();
+}
+
 /** Whether world point `p` lies on a surface that runs along the beams of scan `own` (the
  *  scan it was seen in), met at grazing incidence: in its column of `own`'s image, the nearest
  *  beam on one side (up to one and a half beam spacings away: three rows of half a spacing)
@@ -665,8 +680,13 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     };
     std::vector<Seen> seen(judges.size());
     std::vector<ImageCell> cells(judges.size());
-    // A ringed sensor: the next return up or down a column of a scan's image is its next beam.
+    // A ringed sensor: the next return up or down a column of a scan's image is its next beam,
+    // and each beam's elevation is one of its rings'.
     const bool rings = grid.sensorModel() && grid.sensorModel()->hasRings();
+    std::vector<double> ring_tan;
+    if (rings)
+        for (const double e : grid.sensorModel()->beam_elevations_deg)
+            ring_tan.push_back(std::tan(e * M_PI / 180.0));
 
     // The scan's own image (groundHidden(), alongBeams(), facesBeams()), built when the test
     // does not hold the scan.
@@ -749,14 +769,15 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
                 around = facesTheBeams() ? SurfaceAround{} : surfaceAround(ownJudge(), p_w, margin);
             return *around;
         };
-        // A judge whose own cell toward the point held no return and whose neighbouring row's
-        // beam, on a side where the point's surface ends, returned beyond it: that beam may
-        // have passed beside the surface (over a bush, under a hedge's foot, a ring's far edge
-        // on terrain), not through where it was. Such a "free" settles a side only with the
-        // next judge in that has an opinion: free too, gone; occupied, held. A mover that
-        // left is seen through by both; a static edge is seen occupied again by a judge whose
-        // beam meets it. Only with rings (the next beam up a column; in a rosette's image the
-        // next return there is no neighbouring beam of the same sweep).
+        // A judge whose beam toward the point passed it on a side where the point's surface
+        // ends and returned beyond it: a neighbouring row's beam (its own cell held no return),
+        // or its own cell's, by where the sensor's ring lies in that row (beamAbove()). That
+        // beam may have passed beside the surface (over a bush, under a hedge's foot, a ring's
+        // far edge on terrain), not through where it was. Such a "free" settles a side only
+        // with the next judge in that has an opinion: free too, gone; occupied, held. A mover
+        // that left is seen through by both; a static edge is seen occupied again by a judge
+        // whose beam meets it. Only with rings (the next beam up a column; in a rosette's image
+        // the next return there is no neighbouring beam of the same sweep).
         bool unconfirmed = false;
         // Whether judge j settles this side: gone, or occupied (`at`: where its beam returned,
         // from the point, and the margin there).
@@ -768,7 +789,11 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             const bool own_empty = !std::isfinite(judges[j].at(c->r, c->c));
             const Look v =
                 look(judges[j], *c, margin, false, rings && own_empty ? &surfaceAt() : nullptr);
-            if (v.view == View::Free && v.past_edge && !unconfirmed)
+            bool past_edge = v.past_edge;
+            if (rings && !own_empty && v.view == View::Free)
+                if (const auto above = beamAbove(judges[j], c->r, p_w, ring_tan))
+                    past_edge = *above ? !surfaceAt().up : !surfaceAt().down;
+            if (v.view == View::Free && past_edge && !unconfirmed)
             {
                 unconfirmed = true;
                 return false;
