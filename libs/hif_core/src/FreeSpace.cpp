@@ -92,7 +92,7 @@ struct Look
 {
     View view;
     float range;  ///< of the beam through the point (that of its cell, else the nearest one)
-    /** The beam taken is a neighbouring row's on a side where the point's surface ends
+    /** The beam taken is a neighbouring row's, on a side where the point's surface ends
      *  (SurfaceAround): it may have passed beside the surface rather than through it. */
     bool past_edge = false;
 };
@@ -758,10 +758,10 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             if (std::abs(offset) <= margin.base) return false;
             return facesTheBeams();
         };
-        // Where the point's surface goes on in its own scan (surfaceAround()), asked once per
-        // point where a judge's own cell toward it holds no return. On a surface that faces
-        // the beams, a neighbouring beam returns where one toward the point would (facesBeams()):
-        // it goes on everywhere there.
+        // Where the point's surface goes on in its own scan (surfaceAround()), asked at most
+        // once per point, where a judge's beam beside it (below) is what the judge saw. On a
+        // surface that faces the beams, a beam beside the point returns where one toward it
+        // would (facesBeams()): it goes on everywhere there.
         std::optional<SurfaceAround> around;
         auto surfaceAt = [&]() -> const SurfaceAround&
         {
