@@ -92,9 +92,9 @@ struct Look
 {
     View view;
     float range;  ///< of the beam through the point (that of its cell, else the nearest one)
-    /** The beam taken is a neighbouring row's, on a side where the point's surface ends
-     *  (SurfaceAround): it may have passed beside the surface rather than through it. */
-    bool past_edge = false;
+    /** The row of the image that beam lies in: the point's own, or one above (greater) or
+     *  below it. */
+    int row;
 };
 /** Where the surface of a point goes on in the image of the scan it was seen in: whether the
  *  next beam up its column, and the next one down, returned on it (surfaceAround()). */
@@ -104,10 +104,9 @@ struct SurfaceAround
     bool down = true;
 };
 /** What scan `j` saw at a world point in its `cell`: from the beam of that cell, else (none
- *  there, unless `own_beam_only`) from the nearest one around it, which is past the edge of
- *  the point's surface where `surface` says that it ends on that beam's side. */
+ *  there, unless `own_beam_only`) from the nearest one around it. */
 Look look(const Judge& j, const ImageCell& cell, const RangeMargin& margin,
-          bool own_beam_only = false, const SurfaceAround* surface = nullptr)
+          bool own_beam_only = false)
 {
     const int r = cell.r, c = cell.c;
     const double d = cell.d;
@@ -115,11 +114,11 @@ Look look(const Judge& j, const ImageCell& cell, const RangeMargin& margin,
     const double m = margin.at(d);
     // The beam through the point: that of its own cell, else the nearest one around it.
     const float own = j.at(r, c);
-    if (own <= d + m) return {own > d - m ? View::Occupied : View::None, own};  // or occluded
-    if (own_beam_only && !std::isfinite(own)) return {View::None, own};
+    if (own <= d + m) return {own > d - m ? View::Occupied : View::None, own, r};  // or occluded
+    if (own_beam_only && !std::isfinite(own)) return {View::None, own, r};
     float e = own;
+    int row = r;
     bool near = false;
-    bool past_edge = false;
     int best = std::numeric_limits<int>::max();
     const int cols[3] = {wrapCol(c - 1, l.cols), c, wrapCol(c + 1, l.cols)};
     for (int dr = -1; dr <= 1 && !(near && std::isfinite(own)); ++dr)
@@ -137,13 +136,13 @@ Look look(const Judge& j, const ImageCell& cell, const RangeMargin& margin,
             {
                 best = dist;
                 e = f;
-                past_edge = surface && (dr > 0 ? !surface->up : dr < 0 && !surface->down);
+                row = rr;
             }
         }
     }
-    if (!std::isfinite(e)) return {View::None, e};  // no beam near the point's direction
-    if (e <= d + m) return {e > d - m ? View::Occupied : View::None, e, past_edge};
-    return {near ? View::Vetoed : View::Free, e, past_edge};  // passed, unless something is near it
+    if (!std::isfinite(e)) return {View::None, e, row};  // no beam near the point's direction
+    if (e <= d + m) return {e > d - m ? View::Occupied : View::None, e, row};
+    return {near ? View::Vetoed : View::Free, e, row};  // passed, unless something is near it
 }
 
 /** Where a beam toward a world point in `cell` returned (`range`, +inf: nothing), relative
@@ -759,7 +758,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             return facesTheBeams();
         };
         // Where the point's surface goes on in its own scan (surfaceAround()), asked at most
-        // once per point, where a judge's beam beside it (below) is what the judge saw. On a
+        // once per point, where a judge's beam that passed it saw through (below). On a
         // surface that faces the beams, a beam beside the point returns where one toward it
         // would (facesBeams()): it goes on everywhere there.
         std::optional<SurfaceAround> around;
@@ -786,14 +785,19 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         {
             const ImageCell* c = cellIn(j);
             if (!c) return false;
-            const bool own_empty = !std::isfinite(judges[j].at(c->r, c->c));
-            const Look v =
-                look(judges[j], *c, margin, false, rings && own_empty ? &surfaceAt() : nullptr);
-            bool past_edge = v.past_edge;
-            if (rings && !own_empty && v.view == View::Free)
-                if (const auto above = beamAbove(judges[j], c->r, p_w, ring_tan))
-                    past_edge = *above ? !surfaceAt().up : !surfaceAt().down;
-            if (v.view == View::Free && past_edge && !unconfirmed)
+            const Look v = look(judges[j], *c, margin);
+            // Which side of the point the beam passed: a neighbouring row's by its row, the
+            // point's own row's (its cell's beam, not one beside it) by the ring in that row.
+            std::optional<bool> above;
+            if (rings && v.view == View::Free)
+            {
+                if (v.row != c->r)
+                    above = v.row > c->r;
+                else if (std::isfinite(judges[j].at(c->r, c->c)))
+                    above = beamAbove(judges[j], c->r, p_w, ring_tan);
+            }
+            const bool past_edge = above && (*above ? !surfaceAt().up : !surfaceAt().down);
+            if (past_edge && !unconfirmed)
             {
                 unconfirmed = true;
                 return false;
