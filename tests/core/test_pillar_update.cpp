@@ -719,12 +719,15 @@ namespace
 {
 /** Pillar (20, 0) of a sparse LiDAR's map (rings 2 degrees apart: padding 0.36 m at 20.5 m)
  *  holding `intervals`; then one scan of a beam at height `beam_z` at the pillar, returning
- *  40 m away (the pillar is not hit: a see-through miss). Is height `z` still static? */
-bool staticAfterSeeThrough(std::vector<Interval> intervals, double beam_z, double z)
+ *  40 m away (the pillar is not hit: a see-through miss). Is height `z` still static? The
+ *  ground rule (Params::ground_max_slope_deg) takes ground up to `ground_slope_deg` steep. */
+bool staticAfterSeeThrough(std::vector<Interval> intervals, double beam_z, double z,
+                           double ground_slope_deg = 0.0)
 {
     Params prm;
     prm.sensor_from_scans = false;
     prm.see_through_range = 40.0;
+    prm.ground_max_slope_deg = ground_slope_deg;
     PillarGrid grid(GridGeometry(), prm);
     std::vector<double> rings;
     for (int e = -16; e <= 16; e += 2) rings.push_back(e);
@@ -785,6 +788,35 @@ TEST(SeeThroughMisses, TheGroundSeenAgainALittleHigherStaysPartOfTheFloor)
     const std::vector<Interval> standing{iv(-42, -35, 0.56), iv(-35, -33, 0.64), iv(-33, 0, 0.56)};
     EXPECT_FALSE(staticAfterSeeThrough(standing, -1.45, -1.63));
     EXPECT_TRUE(staticAfterSeeThrough(standing, -1.45, -1.68)) << "the ground under it";
+}
+
+TEST(SeeThroughMisses, OneSightingOfSlopedGroundSpansTheSlopeAcrossThePillar)
+{
+    // A ring crossing the pillar saw ground rising across it, -1.80..-1.70 m (cells -36..-35),
+    // padded by 8 cells: [-44, -26). Other scans saw it a little higher and lower, so it is in
+    // pieces; the top one, [-34, -26), was hit twice, like the ground under it. A beam 0.2 m
+    // above the ground (cell -31) crosses it.
+    const std::vector<Interval> ground{iv(-44, -41, 0.49), iv(-41, -36, 0.56), iv(-36, -34, 0.64),
+                                       iv(-34, -26, 0.56)};
+    // Ground as steep as 5 degrees rises 0.12 m (3 cells) across the pillar's diagonal: one
+    // sighting of it spans up to 2 x 8 + 1 + 3 cells, so the top piece is still the floor, and
+    // the beam empties only the heights it crossed, not the ground seen at -1.70 m.
+    EXPECT_TRUE(staticAfterSeeThrough(ground, -1.55, -1.69, 5.0));
+    EXPECT_FALSE(staticAfterSeeThrough(ground, -1.55, -1.55, 5.0)) << "the heights it crossed";
+    // Without the ground rule a sighting is 2 x 8 + 1 cells from the floor's bottom: the top
+    // piece reaches past it, an object, emptied whole.
+    EXPECT_FALSE(staticAfterSeeThrough(ground, -1.55, -1.69));
+    // What stands on the ground reaches above a sighting of it even on a slope.
+    const std::vector<Interval> standing{iv(-44, -41, 0.49), iv(-41, -36, 0.56), iv(-36, -34, 0.64),
+                                         iv(-34, 0, 0.56)};
+    EXPECT_FALSE(staticAfterSeeThrough(standing, -1.55, -1.69, 5.0));
+    EXPECT_TRUE(staticAfterSeeThrough(standing, -1.55, -1.75, 5.0)) << "the ground under it";
+    // The same pieces with more touching above them (a walker whose feet no ring saw, seen
+    // from the knees up and split by other scans): the slope does not stretch the floor into
+    // the walker, whose piece through the beam is an object.
+    std::vector<Interval> walker = ground;
+    walker.push_back(iv(-26, 0, 0.56));
+    EXPECT_FALSE(staticAfterSeeThrough(walker, -1.55, -1.69, 5.0));
 }
 
 namespace

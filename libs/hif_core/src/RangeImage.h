@@ -210,6 +210,11 @@ struct BeamGate
     /** The blocks of buildReturnImage() for `image`: where a beam that returned nothing had
      *  neighbours that did. */
     const uint8_t* returned_blocks = nullptr;
+    /** For floorTop(): how many height cells the ground may rise across the pillar (the
+     *  steepest ground the map takes for ground, Params::ground_max_slope_deg, over its
+     *  diagonal): a sighting of it that much thicker is still one sighting, where nothing
+     *  touching goes on above it. */
+    int32_t floor_slope_cells = 0;
 
     /** The widths (IntervalWidths) of interval [lo, hi) of this pillar: those of its middle
      *  height at the pillar's distance. */
@@ -228,7 +233,8 @@ struct BeamGate
      *  below the sensor). A later scan that saw the ground a little lower adds such a sliver
      *  under it, which would otherwise make the ground itself an object. Then on up through
      *  the touching intervals below the sensor that end within one sighting of the ground
-     *  from the floor's bottom (twice the padding at the pillar's distance, and a cell): the
+     *  from the floor's bottom (twice the padding at the pillar's distance, and a cell; and
+     *  floor_slope_cells more when the touching run ends there: sloped ground): the
      *  padding above the ground seen there, and the ground seen a few centimetres higher by
      *  another scan, whose log-odds differ. As objects, a beam skimming the ground across
      *  the pillar would show all of them gone, the ground seen in them with them; what
@@ -241,8 +247,17 @@ struct BeamGate
                iv[top + 1].hi * res <= sensor_z)
             ++top;
         if (n == 0) return top;
-        const int64_t sighting_top =
+        int64_t sighting_top =
             int64_t{iv[0].lo} + 2 * int64_t{widthsOf(iv[0].lo, iv[0].hi).pad} + 1;
+        // Ground rising across the pillar is seen a little thicker, by up to floor_slope_cells;
+        // but only where the pillar's content ends there: what stands on the ground (a walker
+        // whose feet no ring saw) goes on up through touching pieces.
+        if (floor_slope_cells > 0)
+        {
+            std::size_t run = top;
+            while (run + 1 < n && iv[run].hi == iv[run + 1].lo) ++run;
+            if (iv[run].hi <= sighting_top + floor_slope_cells) sighting_top += floor_slope_cells;
+        }
         while (top + 1 < n && iv[top].hi == iv[top + 1].lo && iv[top + 1].hi <= sighting_top &&
                iv[top + 1].hi * res <= sensor_z)
             ++top;
@@ -828,6 +843,16 @@ inline float seenOnce(const PillarGrid& grid)
     if (!model || !model->hasRings()) return -std::numeric_limits<float>::infinity();
     const LogOddsModel m = LogOddsModel::of(grid);
     return m.empty_init + m.hit + 1e-4f;
+}
+
+/** BeamGate::floor_slope_cells for the grid: the rise of ground at Params::ground_max_slope_deg
+ *  across a pillar's diagonal, in whole height cells (0 when the ground rule is off). */
+inline int32_t groundSlopeCells(const PillarGrid& grid)
+{
+    const GridGeometry& geo = grid.geometry();
+    const double rise = std::sqrt(2.0) * geo.pillar_size *
+                        std::tan(grid.params().ground_max_slope_deg * M_PI / 180.0);
+    return static_cast<int32_t>(std::ceil(rise / geo.height_resolution - 1e-9));
 }
 
 /** Half the extent, along the ray from the sensor through its centre, of a pillar of side

@@ -98,6 +98,7 @@ void seeThroughMisses(PillarGrid& grid, const Eigen::Isometry3d& T, const ScanBu
     const std::size_t cap = prm.max_intervals_per_pillar;
     const double bridge = neighbourBeamsTan(grid);
     const float seen_once = seenOnce(grid);
+    const int32_t slope_cells = groundSlopeCells(grid);
     forRanges(GridAccess::arena(grid), static_cast<std::size_t>(side), 8,
               [&](std::size_t a0, std::size_t a1)
               {
@@ -130,6 +131,7 @@ void seeThroughMisses(PillarGrid& grid, const Eigen::Isometry3d& T, const ScanBu
                                         t.z(),
                                         seen_once,
                                         ws.returned_blocks.data()};
+                          gate.floor_slope_cells = slope_cells;
                           seeThroughPillar(it->second, gate, model, cap, passed, pieces);
                       }
               });
