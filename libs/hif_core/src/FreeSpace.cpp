@@ -582,8 +582,10 @@ bool oneSurface(const std::vector<Sample>& a, const std::vector<Sample>& b, int 
 }
 
 /** Judges (whose beams returned) that must show a surface moving steadily along the beams
- *  (markSeenThrough()). */
+ *  (markSeenThrough()); for the steady drift, kSteadyJudgesFacing where the point lies on a
+ *  surface that faces the beams (facesBeams()). */
 constexpr std::size_t kSteadyJudges = 3;
+constexpr std::size_t kSteadyJudgesFacing = 2;
 
 /** Gone points needed among `judged` for a share `fraction`: at least one. */
 std::size_t needed(double fraction, std::size_t judged)
@@ -907,7 +909,16 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         // around the point, and foliage's jitter in and out; what a beam on a slanted surface
         // and the pose add does not grow judge after judge). The beam toward the point is the
         // one nearest its elevation; a judge whose beams there returned nothing says nothing
-        // either way; one that cannot see the point ends the walk.
+        // either way; one that cannot see the point ends the walk. Two judges suffice
+        // (kSteadyJudgesFacing) where the point's own scan shows it on a surface that faces
+        // the beams (facesBeams(): its neighbouring beams return within the margin's share for
+        // range noise and pose error): there a beam beside the point returns where one toward
+        // it would, so a second offset that grew beyond that share is the surface's own
+        // motion, not a slanted surface seen from a new place (online, the third scan of a
+        // walker coming along the line of sight has two scans of past).
+        // Asked last: facesBeams() reads the image around the point.
+        auto enoughJudges = [&](std::size_t n)
+        { return n >= kSteadyJudges || (n >= kSteadyJudgesFacing && facesTheBeams()); };
         auto steady = [&](std::size_t count, auto judgeAt)
         {
             double previous = 0.0;
@@ -923,16 +934,21 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
                                if (sign != 0 && side != 0 && sign != side) return Walk::Lost;
                                if (sign != 0) side = sign;
                                previous = o.offset;
-                               return ++returned >= kSteadyJudges && driftSize(previous, o.margin)
+                               return ++returned >= kSteadyJudgesFacing &&
+                                              driftSize(previous, o.margin) &&
+                                              enoughJudges(returned)
                                           ? Walk::Found
                                           : Walk::On;
                            });
         };
         // Only where it can be found: the judge that settled the side is the farthest out
         // that saw the point within the margin, so a steady drift reaches its size there
-        // (what it saw, taken with the beam that look() took), kSteadyJudges or more out.
+        // (what it saw, taken with the beam that look() took), enoughJudges() or more out.
         auto mayDrift = [&](std::size_t settled, const BeamOffset& o)
-        { return settled >= kSteadyJudges && driftSize(o.offset, o.margin); };
+        {
+            return settled >= kSteadyJudgesFacing && driftSize(o.offset, o.margin) &&
+                   enoughJudges(settled);
+        };
         if ((mayDrift(settled_before, at_before) && steady(self_pos, earlier)) ||
             (mayDrift(settled_after, at_after) && steady(judges.size() - self_pos, later)))
             return Verdict::Gone;
