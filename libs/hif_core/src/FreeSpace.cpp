@@ -684,10 +684,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // A ringed sensor: the next return up or down a column of a scan's image is its next beam,
     // and each beam's elevation is one of its rings'.
     const bool rings = grid.sensorModel() && grid.sensorModel()->hasRings();
-    std::vector<double> ring_tan;
-    if (rings)
-        for (const double e : grid.sensorModel()->beam_elevations_deg)
-            ring_tan.push_back(std::tan(e * M_PI / 180.0));
+    const std::vector<double>& ring_tan = GridAccess::beamTangents(grid);
 
     // The scan's own image (groundHidden(), alongBeams(), facesBeams()), built when the test
     // does not hold the scan.

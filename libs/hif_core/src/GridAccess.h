@@ -130,6 +130,9 @@ struct GridAccess
     static ThreadArena* arena(const PillarGrid& g) { return g.state_->arena.get(); }
     /** The grid's buffers (classify(), which is const, takes its own from them). */
     static Workspace& workspace(const PillarGrid& g) { return g.state_->workspace; }
+    /** tan() of the sensor model's beam elevations, ascending (SensorModel::beamTangents(),
+     *  kept with the model); empty without rings. */
+    static const std::vector<double>& beamTangents(const PillarGrid& g) { return g.beam_tangents_; }
 };
 
 }  // namespace hif::detail

@@ -845,13 +845,12 @@ inline float seenOnce(const PillarGrid& grid)
     return m.empty_init + m.hit + 1e-4f;
 }
 
-/** BeamGate::floor_slope_cells for the grid: the rise of ground at Params::ground_max_slope_deg
- *  across a pillar's diagonal, in whole height cells (0 when the ground rule is off). */
-inline int32_t groundSlopeCells(const PillarGrid& grid)
+/** BeamGate::floor_slope_cells for a grid of geometry `geo`: the rise of ground at the ground
+ *  rule's steepest slope (`slope_tan`, LogOddsModel::ground_slope_tan) across a pillar's
+ *  diagonal, in whole height cells (0 when the ground rule is off). */
+inline int32_t groundSlopeCells(const GridGeometry& geo, double slope_tan)
 {
-    const GridGeometry& geo = grid.geometry();
-    const double rise = std::sqrt(2.0) * geo.pillar_size *
-                        std::tan(grid.params().ground_max_slope_deg * M_PI / 180.0);
+    const double rise = std::sqrt(2.0) * geo.pillar_size * slope_tan;
     return static_cast<int32_t>(std::ceil(rise / geo.height_resolution - 1e-9));
 }
 

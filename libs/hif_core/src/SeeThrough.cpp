@@ -98,7 +98,7 @@ void seeThroughMisses(PillarGrid& grid, const Eigen::Isometry3d& T, const ScanBu
     const std::size_t cap = prm.max_intervals_per_pillar;
     const double bridge = neighbourBeamsTan(grid);
     const float seen_once = seenOnce(grid);
-    const int32_t slope_cells = groundSlopeCells(grid);
+    const int32_t slope_cells = groundSlopeCells(geo, model.ground_slope_tan);
     forRanges(GridAccess::arena(grid), static_cast<std::size_t>(side), 8,
               [&](std::size_t a0, std::size_t a1)
               {
