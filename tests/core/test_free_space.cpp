@@ -217,6 +217,16 @@ Params freeSpaceParams()
     return p;
 }
 
+/** freeSpaceParams() online: each scan classified with the past only, a new height starting
+ *  from kitti-online.ini's p_empty_init. */
+Params onlineParams()
+{
+    Params prm = freeSpaceParams();
+    prm.online = true;
+    prm.p_empty_init = 0.5;  // kitti-online.ini's
+    return prm;
+}
+
 /** Share of the points of each kind classified dynamic. */
 struct Removed
 {
@@ -555,9 +565,7 @@ TEST(FreeSpaceTest, OnlineAMoverTooSmallForAnObjectIsShownWhereItIsNew)
             { return groundWallAndPerson(pose.translation(), d, 45.0, box, range); },
             1.7));
     }
-    Params prm = freeSpaceParams();
-    prm.p_empty_init = 0.5;
-    prm.online = true;
+    const Params prm = onlineParams();
     PillarGrid grid(GridGeometry(), prm);
     grid.setSensorModel(model);
     FreeSpaceTest past(FreeSpaceTest::capacityFor(prm));
@@ -780,10 +788,7 @@ TEST(FreeSpaceTest, OnlineTwoPastScansShowAWalkerFacingTheBeamsDrifting)
 {
     const std::vector<Scan> scans = radialWalkerScans(0.0, 0.16);
     std::vector<WithAndWithout> per_scan;
-    Params online = freeSpaceParams();
-    online.online = true;
-    online.p_empty_init = 0.5;  // kitti-online.ini's
-    const WithAndWithout all = onlineWithAndWithout(scans, online, &per_scan);
+    const WithAndWithout all = onlineWithAndWithout(scans, onlineParams(), &per_scan);
     ASSERT_EQ(per_scan.size(), scans.size());
     const Removed& third = per_scan[2].with;
     // Measured: all 136 points of the third scan's person (none when three judges were
@@ -1064,17 +1069,9 @@ std::vector<Scan> vanAheadScans()
         });
 }
 
-Params vanAheadParams()
-{
-    Params prm = freeSpaceParams();
-    prm.online = true;
-    prm.p_empty_init = 0.5;  // kitti-online.ini's
-    return prm;
-}
-
 TEST(FreeSpaceTest, AVanDrivingAheadIsShownByItsConstantSpeedAlongTheBeams)
 {
-    const auto [without, with] = onlineWithAndWithout(vanAheadScans(), vanAheadParams());
+    const auto [without, with] = onlineWithAndWithout(vanAheadScans(), onlineParams());
     // Measured: the map alone removes 30 % of the van (the test as well, before this rule),
     // the test 78.4 % (every scan from the third, which has two scans of past; 68.9 % when
     // three were needed).
@@ -1094,7 +1091,7 @@ TEST(FreeSpaceTest, AVanDrivingAheadIsShownByItsConstantSpeedAlongTheBeams)
 void expectTheVanShownIn(std::size_t k)
 {
     std::vector<WithAndWithout> per_scan;
-    onlineWithAndWithout(vanAheadScans(), vanAheadParams(), &per_scan);
+    onlineWithAndWithout(vanAheadScans(), onlineParams(), &per_scan);
     ASSERT_EQ(per_scan.size(), 10u);
     const WithAndWithout& scan = per_scan[k];
     EXPECT_GT(scan.with.n[kPerson], 500u);
@@ -1165,7 +1162,7 @@ TEST(FreeSpaceTest, ACarSeenThroughAGapInAHedgeStays)
         standingScans(10, {{{17.5, 4.5, kGroundZ}, {18.5, 7.5, kGroundZ + 1.5}, kHedge, 0, 5},
                            {{21.0, 5.5, kGroundZ}, {22.5, 6.5, kGroundZ + 1.0}, kParked}});
     std::vector<WithAndWithout> per_scan;
-    onlineWithAndWithout(scans, vanAheadParams(), &per_scan);
+    onlineWithAndWithout(scans, onlineParams(), &per_scan);
     ASSERT_EQ(per_scan.size(), 10u);
     EXPECT_EQ(per_scan[4].with.n[kParked], 0u);  // hidden until the gap
     const WithAndWithout& sixth = per_scan[5];
@@ -1206,9 +1203,7 @@ TEST(FreeSpaceTest, WhatStandsBehindABarrierIsTestedDownToItsLowestRing)
                                     return what;
                                 }));
     }
-    Params prm = freeSpaceParams();
-    prm.online = true;
-    prm.p_empty_init = 0.5;  // kitti-online.ini's
+    Params prm = onlineParams();
     prm.free_space_fraction = 0.4;
     const auto [without, with] = onlineWithAndWithout(scans, prm);
     // Measured: the map alone removes none of the moving car, the test 79.6 % (66.6 % with its
@@ -1363,9 +1358,7 @@ TEST(FreeSpaceTest, ALowestReturnThatFacesTheBeamsIsNoGround)
             { return groundWallAndPerson(pose.translation(), d, 45.0, car, range); },
             1.7));
     }
-    Params online = freeSpaceParams();
-    online.online = true;
-    online.p_empty_init = 0.5;  // kitti-online.ini's
+    const Params online = onlineParams();
     // Measured: offline 85.2 % of the car's 1,042 points removed (24.6 % before this rule, the
     // map alone 5.8 %), online 65.6 % (16.7 %, the map alone none; the first scan has no past).
     const WithAndWithout offline = offlineWithModel(scans, model, 0.0).all;
@@ -1401,7 +1394,7 @@ TEST(FreeSpaceTest, ACarCrossingTheViewGoesWholeWhereItsSideSlidAlongItself)
                     [&](const Eigen::Vector3d& d, double& range)
                     { return groundWallAndPerson(Eigen::Vector3d::Zero(), d, 40.0, car, range); }));
     }
-    Params prm = vanAheadParams();
+    Params prm = onlineParams();
     prm.free_space_fraction = 0.4;  // kitti-online.ini's
     std::vector<WithAndWithout> per_scan;
     onlineWithAndWithout(scans, prm, &per_scan);
@@ -1429,7 +1422,7 @@ TEST(FreeSpaceTest, WhatStoodThereAllAlongStaysBesideWhatArrivedOnTheSameSurface
     const std::vector<Scan> scans =
         standingScans(6, {{{20.0, -2.0, kGroundZ + 0.3}, {20.2, 1.0, kGroundZ + 1.8}, kHedge, 1},
                           {{20.0, 1.0, kGroundZ + 0.3}, {20.2, 2.0, kGroundZ + 1.8}, kParked}});
-    Params prm = vanAheadParams();
+    Params prm = onlineParams();
     prm.free_space_fraction = 0.4;
     std::vector<WithAndWithout> per_scan;
     onlineWithAndWithout(scans, prm, &per_scan);
