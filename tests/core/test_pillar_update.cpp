@@ -670,6 +670,65 @@ TEST(EmptyPrior, ANewIntervalStartsFromPEmptyOnlyWhereBeamsWereSeenPassing)
     EXPECT_FALSE(staticAfter(false, -1.7 + 0.55));
 }
 
+// A facade met at grazing incidence cuts pillar (20, -9) along its back strip (y = -8.9, the
+// sensor at the origin, 23 degrees off it): beams pass the pillar's free part and land on the
+// facade just beyond it. They show that part empty, not the strip the facade stands in, which the
+// scan did not hit at those heights (a non-repetitive pattern's beams went elsewhere; a ring would
+// have gone on to hit it): the facade seen there later starts from p_empty_init, not from the
+// pillar's p_empty, and is kept. Beams that land on a surface facing them beyond the pillar (a
+// car's back) are evidence: what then appears in the pillar at those heights starts from p_empty.
+TEST(EmptyPrior, BeamsThatMetASurfaceRunningIntoThePillarShowOnlyItsFreePartEmpty)
+{
+    const double ground = -1.7, z0 = -1.0, z1 = -0.3;  // the heights the beams cross
+    // Returns at (x, y) on rows of a 64-beam-like sensor (0.44 degrees apart) within [z0, z1].
+    auto rows = [&](double x, double y, std::vector<float>& px, std::vector<float>& py,
+                    std::vector<float>& pz)
+    {
+        const double d = std::hypot(x, y);
+        for (int k = -40; k <= 0; ++k)
+        {
+            const double zk = d * std::tan(k * 0.44 * M_PI / 180.0);
+            if (zk < z0 || zk > z1) continue;
+            px.push_back(float(x)), py.push_back(float(y)), pz.push_back(float(zk));
+        }
+    };
+    // Whether what the last two scans saw in the pillar at z0..z1 is static, after three
+    // scans whose beams passed it and landed on a facade along y = -8.9 (`facade`), or on a
+    // surface facing them 1.3 m behind the pillar's centre (about as near as the facade).
+    auto staticAfter = [&](bool facade)
+    {
+        Params prm;
+        prm.sensor_from_scans = false;
+        prm.p_empty_init = 0.42;  // a second sighting wanted, as offline
+        PillarGrid grid(GridGeometry(), prm);
+        grid.setSensorModel(SensorModel::fromPattern(-30.0, 15.0, 0.44, 360.0));  // no rings
+        const Eigen::Vector2d centre(20.5, -8.5), dir = centre.normalized();
+        std::vector<float> ax, ay, az;
+        if (facade)
+            for (double fx = 21.0; fx < 30.0; fx += 0.05) rows(fx, -8.9, ax, ay, az);
+        else
+            for (double t = -1.5; t <= 1.5; t += 0.02)
+            {
+                const Eigen::Vector2d p =
+                    (centre.norm() + 1.3) * dir + t * Eigen::Vector2d(-dir.y(), dir.x());
+                rows(p.x(), p.y(), ax, ay, az);
+            }
+        // The pillar's ground, so that the scan updates the pillar.
+        for (double gx = 20.1; gx < 21.0; gx += 0.2)
+            ax.push_back(float(gx)), ay.push_back(-8.5f), az.push_back(float(ground));
+        for (int s = 0; s < 3; ++s) grid.insertScan({ax.data(), ay.data(), az.data(), ax.size()});
+        EXPECT_LT(grid.findPillar({20, -9})->logodds_empty, logit(0.3)) << "seen empty";
+        // Then twice: the same, and the pillar's strip of the facade (or something in the
+        // pillar) at those heights.
+        std::vector<float> bx = ax, by = ay, bz = az;
+        for (double fx = 20.05; fx < 21.0; fx += 0.05) rows(fx, facade ? -8.9 : -8.5, bx, by, bz);
+        for (int s = 0; s < 2; ++s) grid.insertScan({bx.data(), by.data(), bz.data(), bx.size()});
+        return grid.isStatic(20.5, facade ? -8.9 : -8.5, 0.5 * (z0 + z1));
+    };
+    EXPECT_TRUE(staticAfter(true)) << "the facade's strip of the pillar: p_empty_init";
+    EXPECT_FALSE(staticAfter(false)) << "where beams were seen passing to a surface facing them";
+}
+
 TEST(SeeThroughMisses, BeamsThatPassedThroughAPillarEmptyIt)
 {
     // Off (the paper): a pillar no return falls in is untouched.

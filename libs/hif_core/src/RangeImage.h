@@ -284,7 +284,8 @@ struct BeamGate
      *  pillar of the rows of the image where a beam did so (after the first such row, the
      *  beam toward its centre) go to `passed`: a row's band of elevations (half a beam
      *  spacing: a ring's row, or for a sensor without rings the beams near that elevation),
-     *  not only the beam's own. */
+     *  not only the beam's own; but not where the beam met a surface that runs on into the
+     *  pillar beside it (intoPillar()): it passed the pillar's free part only. */
     [[nodiscard]] bool seenEmpty(int32_t lo, int32_t hi, PassedCells& passed) const
     {
         Axis a;
@@ -296,17 +297,23 @@ struct BeamGate
         constexpr int kFirstBlock = 16;
         int run_top = -1;  // the top row of the run of rows that passed, walking down
         int row = a.row1;
+        bool seen = false;  // a beam passed, whether or not it shows heights to record
         while (row >= a.row0 && run_top < 0)
         {
             const int block_lo = std::max(a.row0, row - kFirstBlock + 1);
+            const int n = row - block_lo + 1;
             uint64_t m = 0;
             for (int k = 0; k < a.ncols; ++k)
-                m |= passedRows(*layout, columnOf(a.cols[k]), block_lo, row - block_lo + 1, a.d,
-                                margin);
+            {
+                const uint64_t b =
+                    passedRows(*layout, columnOf(a.cols[k]), block_lo, n, a.d, margin);
+                seen = seen || b != 0;
+                m |= withoutSurfacesInto(a, lo, a.cols[k], block_lo, b);
+            }
             if (m != 0) run_top = block_lo + highestBit(m);
             row = m != 0 ? run_top - 1 : block_lo - 1;
         }
-        if (run_top < 0) return false;
+        if (run_top < 0) return seen;
         // The rest of the centre's column, down the image (a column is contiguous): each run
         // of rows that passed goes to `passed` (the heights its rows cross, rowsCells()).
         const BeamReturn* column = columnOf(a.cols[a.ncols / 2]);
@@ -319,8 +326,9 @@ struct BeamGate
         while (row >= a.row0)
         {
             const int block_lo = std::max(a.row0, row - 63);
-            const uint64_t m =
-                passedRows(*layout, column, block_lo, row - block_lo + 1, a.d, margin);
+            const uint64_t m = withoutSurfacesInto(
+                a, lo, a.cols[a.ncols / 2], block_lo,
+                passedRows(*layout, column, block_lo, row - block_lo + 1, a.d, margin));
             // Bits [0, i] of the block are left to walk, from the top: the next row where a
             // run ends (in a run) or starts (between runs).
             for (int i = row - block_lo; i >= 0;)
@@ -340,6 +348,14 @@ struct BeamGate
         if (run_top >= 0) endRun(a.row0);
         return true;
     }
+
+    /** Whether seenEmpty() leaves out of `passed` the beams that met a surface running on
+     *  into the pillar (intoPillar()): for a sensor without rings, whose beams near a pillar
+     *  a facade cuts may miss the facade's strip of it. A ring that passes the pillar's free
+     *  part goes on to hit that strip at the same heights in the same sweep, unless something
+     *  hides it, so the pillar is seen there as it is seen passed (measured with rings: SA
+     *  +0.00 to +0.13, DA -0.07 to +0.15, for 10-20 % more insertion time; doc/sensors.md). */
+    bool surfaces_into = false;
 
     /** Where the scan saw a surface within Params::pillar_edge_margin of the pillar's edge,
      *  in the pillars beside it (ScanBuckets::edge_spans), sorted and disjoint: passedCells()
@@ -549,6 +565,81 @@ private:
         return true;
     }
 
+    /** Whether the beam of cell (row, col), which passed the pillar (passesBeyond()) and
+     *  returned within the pillar's extent beyond it, met a surface that runs on into the
+     *  pillar: along its row on either side (within `span` columns: the pillar's half width
+     *  and one more), the returns that follow on one surface (each within the pillar's reach
+     *  of the one before in range), and the straight line through the beam's return and the
+     *  farthest of them, in the horizontal plane, crosses the pillar (within its half
+     *  diagonal, `margin`, of its centre). A facade met at grazing incidence behind the free
+     *  part of a pillar it cuts: the beam shows that part empty, not the strip of the pillar
+     *  the facade stands in, which this scan may not have hit there. A surface facing the beam
+     *  (a car's back, a walker) runs across it beyond the pillar; a return on the other side
+     *  of an edge lies on another surface. */
+    [[nodiscard]] bool intoPillar(int row, int col, int span) const
+    {
+        const RangeImageLayout& l = *layout;
+        const double r = cellAt(row, col).range();
+        for (const int side : {-1, 1})
+        {
+            // The farthest return of the surface along the row: one after the other, each
+            // within the pillar's reach of the one before (a longer baseline than the next
+            // return's, for the surface's direction).
+            double prev = r;
+            int far = -1;
+            for (int k = 1; k <= span; ++k)
+            {
+                const int c = wrapCol(col + side * k, l.cols);
+                const BeamReturn& nb = cellAt(row, c);
+                if (nb.range_cm == BeamReturn::kNone) continue;
+                if (std::abs(nb.range() - prev) > reach) break;  // another surface
+                prev = nb.range();
+                far = c;
+            }
+            if (far < 0) continue;
+            const Eigen::Vector3d x = horizontal(pointAt(row, col));
+            const Eigen::Vector3d along = horizontal(pointAt(row, far)) - x;
+            const double len = along.norm();
+            if (len > 0.0 && along.cross(horizontal(base) - x).norm() <= margin * len) return true;
+        }
+        return false;
+    }
+
+    /** `m`, bits of passedRows() for the rows from block_lo of column `col`, without the
+     *  beams that met a surface running on into the pillar (intoPillar()). Only those that
+     *  returned within the pillar's extent beyond it and not below its lowest content `lo`
+     *  (a height cell) are asked. */
+    [[nodiscard]] uint64_t withoutSurfacesInto(const Axis& a, int32_t lo, int col, int block_lo,
+                                               uint64_t m) const
+    {
+        if (!surfaces_into || m == 0) return m;
+        int span = 0;  // found for the first beam asked
+        const BeamReturn* column = columnOf(col);
+        const double floor_up = lo * res - sensor_z;  // the pillar's lowest, above the sensor
+        for (uint64_t left = m; left != 0; left &= left - 1)
+        {
+            const int b = __builtin_ctzll(left);
+            const int row = block_lo + b;
+            // Returned beyond the pillar's extent (passesBeyond() by 2 reach more), or below
+            // its lowest content (the ground beyond it, mostly): not asked.
+            if (passesBeyond(column[row].range(), rowDist2(*layout, a.d, row),
+                             margin + 2.0 * reach) ||
+                pointAt(row, col).dot(up) < floor_up)
+                continue;
+            // The pillar's half width in columns at its distance, and one more (a column spans
+            // at least 4 / cols radians of azimuth: pseudoAzimuth()).
+            if (span == 0) span = static_cast<int>(std::ceil(reach / a.d * layout->cols / 4.0)) + 1;
+            if (intoPillar(row, col, span)) m &= ~(uint64_t{1} << b);
+        }
+        return m;
+    }
+
+    /** `v` without its component along `up`. */
+    [[nodiscard]] Eigen::Vector3d horizontal(const Eigen::Vector3d& v) const
+    {
+        return v - v.dot(up) * up;
+    }
+
     /** What the rows of `a` say of heights [lo, hi) of the pillar: a beam passed through
      *  them, a return near the pillar vetoes, or neither (and whether a return in front of it
      *  blocks the view). */
@@ -651,8 +742,16 @@ private:
     /** The return in cell (row, col), placed, or none. */
     [[nodiscard]] Found at(int row, int col) const
     {
+        if (cellAt(row, col).range_cm == BeamReturn::kNone) return {};
+        const Eigen::Vector3d p = pointAt(row, col);
+        const double h = p.dot(up);
+        return {{std::sqrt(std::max(0.0, p.squaredNorm() - h * h)), h}, row, col, true};
+    }
+    /** The return in cell (row, col) (there must be one) in the sensor frame, along its
+     *  column's azimuth. */
+    [[nodiscard]] Eigen::Vector3d pointAt(int row, int col) const
+    {
         const BeamReturn& ret = cellAt(row, col);
-        if (ret.range_cm == BeamReturn::kNone) return {};
         // The column's azimuth from its pseudo-azimuth (pseudoAzimuth() inverted).
         const double paz = (col + 0.5) * (4.0 / layout->cols);
         const double q = paz - std::floor(paz);
@@ -667,9 +766,7 @@ private:
             x = q, y = q - 1.0;
         const double t = ret.tan();
         const double s = ret.range() / std::sqrt((1.0 + t * t) * (x * x + y * y));
-        const Eigen::Vector3d p(s * x, s * y, s * std::sqrt(x * x + y * y) * t);
-        const double h = p.dot(up);
-        return {{std::sqrt(std::max(0.0, p.squaredNorm() - h * h)), h}, row, col, true};
+        return {s * x, s * y, s * std::sqrt(x * x + y * y) * t};
     }
     /** The next beam's return above (dir 1) or below (dir -1) `from`: the first within 1.5
      *  vertical spacings (bridge_tan), in its column or a neighbouring one (a beam's returns

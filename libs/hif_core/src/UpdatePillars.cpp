@@ -32,6 +32,7 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
     constexpr int kHalfCols = 1;
     const double bridge = neighbourBeamsTan(grid);
     const float seen_once = seenOnce(grid);
+    const bool surfaces_into = grid.sensorModel() && !grid.sensorModel()->hasRings();
     // Ground seen once: the runs down each column, found once per scan (a new generation).
     if (gated && model.ground_slope_tan > 0.0)
     {
@@ -71,6 +72,7 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
         gate.generation = ws.ground_generation;
         gate.farthest_return = ws.farthest_return;
         gate.edge_spans = scan.edgeSpansOf(p, gate.edge_count);
+        gate.surfaces_into = surfaces_into;
         return gate;
     };
 
