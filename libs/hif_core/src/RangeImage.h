@@ -568,9 +568,10 @@ private:
     /** Whether the beam of cell (row, col), which passed the pillar (passesBeyond()) and
      *  returned within the pillar's extent beyond it, met a surface that runs on into the
      *  pillar: along its row on either side (within `span` columns: the pillar's half width
-     *  and one more), the returns that follow on one surface (each within the pillar's reach
-     *  of the one before in range), and the straight line through the beam's return and the
-     *  farthest of them, in the horizontal plane, crosses the pillar (within its half
+     *  and one more; in each, its row or the one above or below), the returns that follow on
+     *  one surface (each within the pillar's reach of the one before in range), and the
+     *  straight line through the beam's return and the farthest of them, in the horizontal
+     *  plane, crosses the pillar (within its half
      *  diagonal, `margin`, of its centre). A facade met at grazing incidence behind the free
      *  part of a pillar it cuts: the beam shows that part empty, not the strip of the pillar
      *  the facade stands in, which this scan may not have hit there. A surface facing the beam
@@ -586,19 +587,31 @@ private:
             // within the pillar's reach of the one before (a longer baseline than the next
             // return's, for the surface's direction).
             double prev = r;
-            int far = -1;
+            int far = -1, far_row = row;
             for (int k = 1; k <= span; ++k)
             {
+                // In the column, the return of its row or of the row above or below nearest
+                // the last one in range: a non-repetitive pattern crosses the rows
+                // obliquely, so its next sample on the surface may lie a row up or down.
                 const int c = wrapCol(col + side * k, l.cols);
-                const BeamReturn& nb = cellAt(row, c);
-                if (nb.range_cm == BeamReturn::kNone) continue;
-                if (std::abs(nb.range() - prev) > reach) break;  // another surface
-                prev = nb.range();
+                float best = std::numeric_limits<float>::infinity();
+                int best_row = -1;
+                for (int rr = std::max(0, row - 1); rr <= std::min(l.rows - 1, row + 1); ++rr)
+                {
+                    const BeamReturn& nb = cellAt(rr, c);
+                    if (nb.range_cm != BeamReturn::kNone &&
+                        std::abs(nb.range() - prev) < std::abs(best - prev))
+                        best = nb.range(), best_row = rr;
+                }
+                if (best_row < 0) continue;
+                if (std::abs(best - prev) > reach) break;  // another surface
+                prev = best;
                 far = c;
+                far_row = best_row;
             }
             if (far < 0) continue;
             const Eigen::Vector3d x = horizontal(pointAt(row, col));
-            const Eigen::Vector3d along = horizontal(pointAt(row, far)) - x;
+            const Eigen::Vector3d along = horizontal(pointAt(far_row, far)) - x;
             const double len = along.norm();
             if (len > 0.0 && along.cross(horizontal(base) - x).norm() <= margin * len) return true;
         }
