@@ -640,8 +640,10 @@ private:
                 pointAt(row, col).dot(up) < floor_up)
                 continue;
             // The pillar's half width in columns at its distance, and one more (a column spans
-            // at least 4 / cols radians of azimuth: pseudoAzimuth()).
-            if (span == 0) span = static_cast<int>(std::ceil(reach / a.d * layout->cols / 4.0)) + 1;
+            // at least 4 / cols radians of azimuth: pseudoAzimuth()); at most a quarter turn,
+            // for a pillar around the sensor.
+            if (span == 0)
+                span = static_cast<int>(std::ceil(std::atan2(reach, a.d) * layout->cols / 4.0)) + 1;
             if (intoPillar(row, col, span)) m &= ~(uint64_t{1} << b);
         }
         return m;
