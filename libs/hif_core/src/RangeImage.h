@@ -570,14 +570,14 @@ private:
      *  pillar: along its row on either side (within `span` columns: the pillar's half width
      *  and one more; in each, its row or the one above or below), the returns that follow on
      *  one surface (each within the pillar's reach of the one before in range), and the
-     *  straight line through the beam's return and the farthest of them, in the horizontal
-     *  plane, crosses the pillar (within its half
+     *  straight line through the beam's return (`x`: pointAt(row, col), horizontal()) and the
+     *  farthest of them, in the horizontal plane, crosses the pillar (within its half
      *  diagonal, `margin`, of its centre). A facade met at grazing incidence behind the free
      *  part of a pillar it cuts: the beam shows that part empty, not the strip of the pillar
      *  the facade stands in, which this scan may not have hit there. A surface facing the beam
      *  (a car's back, a walker) runs across it beyond the pillar; a return on the other side
      *  of an edge lies on another surface. */
-    [[nodiscard]] bool intoPillar(int row, int col, int span) const
+    [[nodiscard]] bool intoPillar(int row, int col, int span, const Eigen::Vector3d& x) const
     {
         const RangeImageLayout& l = *layout;
         const double r = cellAt(row, col).range();
@@ -610,7 +610,6 @@ private:
                 far_row = best_row;
             }
             if (far < 0) continue;
-            const Eigen::Vector3d x = horizontal(pointAt(row, col));
             const Eigen::Vector3d along = horizontal(pointAt(far_row, far)) - x;
             const double len = along.norm();
             if (len > 0.0 && along.cross(horizontal(base) - x).norm() <= margin * len) return true;
@@ -636,15 +635,16 @@ private:
             // Returned beyond the pillar's extent (passesBeyond() by 2 reach more), or below
             // its lowest content (the ground beyond it, mostly): not asked.
             if (passesBeyond(column[row].range(), rowDist2(*layout, a.d, row),
-                             margin + 2.0 * reach) ||
-                pointAt(row, col).dot(up) < floor_up)
+                             margin + 2.0 * reach))
                 continue;
+            const Eigen::Vector3d p = pointAt(row, col);
+            if (p.dot(up) < floor_up) continue;
             // The pillar's half width in columns at its distance, and one more (a column spans
             // at least 4 / cols radians of azimuth: pseudoAzimuth()); at most a quarter turn,
             // for a pillar around the sensor.
             if (span == 0)
                 span = static_cast<int>(std::ceil(std::atan2(reach, a.d) * layout->cols / 4.0)) + 1;
-            if (intoPillar(row, col, span)) m &= ~(uint64_t{1} << b);
+            if (intoPillar(row, col, span, horizontal(p))) m &= ~(uint64_t{1} << b);
         }
         return m;
     }
