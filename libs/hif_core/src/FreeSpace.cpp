@@ -62,13 +62,17 @@ struct ImageCell
     double d;
     bool upper;  ///< in the upper half of its row
 };
+std::optional<ImageCell> cellAt(const RangeImageLayout& l, const Eigen::Vector3d& q);
 std::optional<ImageCell> cellOf(const Judge& j, const Eigen::Vector3d& p)
 {
-    const Eigen::Vector3d q = j.Rt * (p - j.t);
+    return cellAt(*j.layout, j.Rt * (p - j.t));
+}
+/** cellOf() for `q`, a point in the judge's sensor frame (`l`, its image's layout). */
+std::optional<ImageCell> cellAt(const RangeImageLayout& l, const Eigen::Vector3d& q)
+{
     const double rxy = std::sqrt(q.x() * q.x() + q.y() * q.y());
     if (rxy == 0.0) return std::nullopt;
     const double tan_el = q.z() / rxy;
-    const RangeImageLayout& l = *j.layout;
     if (!(tan_el >= l.tan_min && tan_el < l.tan_max)) return std::nullopt;
     const double row = (tan_el - l.tan_min) / l.tan_res;
     const int r = std::min(l.rows - 1, static_cast<int>(row));
@@ -274,8 +278,11 @@ bool alongBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& m
  *  at grazing incidence (a facade along the street, a windscreen) or in foliage,
  *  neighbouring beams return farther apart; returns beyond the margin are another surface
  *  (the point lies on an edge). The ground seen by one ring returns its row at one range, but
- *  the next ring lands beyond the margin: no surface in the column. */
-bool facesBeams(const Judge& own, const ImageCell& cell, const RangeMargin& margin)
+ *  the next ring lands beyond the margin: no surface in the column. With `row_only`, a
+ *  surface seen by one ring (nothing on it up or down the column) faces the beams when its row
+ *  does so (a return up or down the column that lies on it still must). */
+bool facesBeams(const Judge& own, const ImageCell& cell, const RangeMargin& margin,
+                bool row_only = false)
 {
     const int cols = own.layout->cols;
     const double m = margin.at(cell.d);
@@ -297,7 +304,7 @@ bool facesBeams(const Judge& own, const ImageCell& cell, const RangeMargin& marg
         nextInColumn(own, cell.r, cell.c, dir, f);
         if (!check(f, in_column)) return false;
     }
-    return in_row && in_column;
+    return in_row && (in_column || row_only);
 }
 
 /** facesBeams() for world point `p`, in its cell of `own`'s image (false outside it). */
@@ -314,9 +321,9 @@ struct ColumnPlaces
     const Judge& own;
     double ux = 0.0, uy = 0.0;  ///< the azimuth's direction, sensor frame
 
-    ColumnPlaces(const Judge& j, const Eigen::Vector3d& p) : own(j)
+    /** Along the azimuth of `q`, a point in the sensor frame of `j`. */
+    ColumnPlaces(const Judge& j, const Eigen::Vector3d& q) : own(j)
     {
-        const Eigen::Vector3d q = own.Rt * (p - own.t);
         const double rxy = std::sqrt(q.x() * q.x() + q.y() * q.y());
         ux = q.x() / rxy;
         uy = q.y() / rxy;
@@ -351,7 +358,7 @@ struct ColumnPlaces
  *  that, and a kerb's face is lower than an object; a beam below that returned nothing says
  *  nothing. */
 bool groundHidden(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& margin,
-                  double face)
+                  double face, bool row_only = false)
 {
     const auto cell = cellOf(own, p);
     if (!cell) return false;
@@ -361,10 +368,10 @@ bool groundHidden(const Judge& own, const Eigen::Vector3d& p, const RangeMargin&
     if (r1 < 0 || !(f1 < in_front)) return false;
     int r = nextInColumn(own, r1, cell->c, -1, f);
     if (r < 0) return false;
-    const ColumnPlaces column(own, p);
+    const ColumnPlaces column(own, own.Rt * (p - own.t));
     Eigen::Vector2d above = column.at(r, f);
     if (ColumnPlaces::steep(column.at(r1, f1), above)) return true;
-    if (!facesBeams(own, *cell, margin)) return false;
+    if (!facesBeams(own, *cell, margin, row_only)) return false;
     bool in_face = false;
     double face_top = 0.0;
     while ((r = nextInColumn(own, r, cell->c, -1, f)) >= 0 && f < in_front)
@@ -377,6 +384,41 @@ bool groundHidden(const Judge& own, const Eigen::Vector3d& p, const RangeMargin&
         above = below;
     }
     return false;
+}
+
+/** Whether `q`, a point of scan `own` (the scan it was seen in) in that scan's sensor frame,
+ *  stands `rise` metres or more above the foot of what stands in front of it there. Walking
+ *  down its column from it over the returns in front of it by more than the margin (each next
+ *  beam within one and a half beam spacings): a face (steps more than 45 degrees from the
+ *  horizontal, ColumnPlaces::steep()), then the first step after it that is not, where the
+ *  face's foot meets the ground; the height is over the lowest return up to there, and there
+ *  is none when the walk meets no face. Over a parked car, the road at the car's side: a
+ *  walker's head stands its height above it; the road on the far side of a barrier, however
+ *  much the road climbs towards it, little more than the barrier's foot. */
+bool risesOverFront(const Judge& own, const Eigen::Vector3d& q, const RangeMargin& margin,
+                    double rise)
+{
+    const auto cell = cellAt(*own.layout, q);
+    if (!cell) return false;
+    const double in_front = cell->d - margin.at(cell->d);
+    const ColumnPlaces column(own, q);
+    const double height = own.Rt.col(2).dot(q);  // above the sensor, world frame
+    // Down the column over the returns in front: the run of steep steps (the face that hides
+    // what lies below `q`), then the first step after it that is not (the ground at its foot).
+    double lowest = height;
+    bool face = false;
+    std::optional<Eigen::Vector2d> above;
+    float f = 0.0f;
+    for (int r = cell->r; (r = nextInColumn(own, r, cell->c, -1, f)) >= 0 && f < in_front;)
+    {
+        const Eigen::Vector2d b = column.at(r, f);
+        const bool steep = above && ColumnPlaces::steep(*above, b);
+        lowest = std::min(lowest, b.y());
+        if (face && !steep) return height - lowest >= rise;
+        face = face || steep;
+        above = b;
+    }
+    return face && height - lowest >= rise;
 }
 
 /** Whether world point `p`, the lowest return of a pillar, stands above ground out of sight of
@@ -400,7 +442,7 @@ bool standsAboveGround(const Judge& own, const Eigen::Vector3d& p, const RangeMa
     const int r1 = nextInColumn(own, cell->r, cell->c, -1, f1);
     const int r2 = r1 < 0 ? -1 : nextInColumn(own, r1, cell->c, -1, f2);
     if (r2 < 0) return false;
-    const ColumnPlaces column(own, p);
+    const ColumnPlaces column(own, own.Rt * (p - own.t));
     const Eigen::Vector2d a = column.at(r1, f1), b = column.at(r2, f2);
     if (!(a.x() - b.x() > 0.0)) return false;  // no line running away from the sensor
     const Eigen::Vector3d w = p - own.t;       // from the sensor, world axes
@@ -1038,22 +1080,28 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         while (last + 1 < pts.size && scan.repeats[last + 1]) ++last;
         return last;
     };
-    auto verdict = [&](uint32_t k)
+    // An entry's verdict from its run's points' (`of`): its first point's, unless that is not
+    // gone and its last point's is known.
+    auto runVerdict = [&](uint32_t k, auto&& of)
     {
         const uint32_t first = scan.index[k], last = lastOfRun(first);
-        const Verdict a = pointVerdict(first);
+        const Verdict a = of(first);
         if (a == Verdict::Gone || last == first) return a;
-        const Verdict b = pointVerdict(last);
+        const Verdict b = of(last);
         if (b != Verdict::Unjudged) return b;
         return a;
     };
+    auto verdict = [&](uint32_t k) { return runVerdict(k, pointVerdict); };
 
-    // Whether the judges show input point i gone by the beams through its own cell alone (the
+    // The verdict of the judges on input point i by the beams through its own cell alone (the
     // stretch rule of pointVerdict(), walking in from the farthest judge on each side): where a
     // judge's cell holds no return, a neighbouring cell's beam is no evidence about a point on
     // the ground, which it meets at grazing incidence a beam spacing higher or lower, metres
-    // beyond or in front.
-    auto goneByOwnBeams = [&](uint32_t i)
+    // beyond or in front. With `below_only`, a beam that returned beyond the point shows it
+    // gone only where the sensor's ring in its row passed below the point (beamAbove()): a
+    // beam a little below the top of something standing meets it while it is there, one a
+    // little above passes over it (or over a roof's edge, met at grazing incidence).
+    auto ownBeamsVerdict = [&](uint32_t i, bool below_only = false)
     {
         const Eigen::Vector3d p_w = worldOf(i);
         const Eigen::Vector3d from_self = p_w - t;
@@ -1065,11 +1113,21 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             const auto c = cellOf(judges[j], p_w);
             if (!c) return false;
             const View v = look(judges[j], *c, margin, true).view;
+            if (below_only && v == View::Free && beamAbove(judges[j], c->r, p_w, ring_tan) != false)
+                return false;
             gone = v == View::Free;
             return gone || v == View::Occupied;
         };
-        return (settledAt(self_pos, earlier, settles) && gone) ||
-               (settledAt(judges.size() - self_pos, later, settles) && gone);
+        bool held = false;
+        for (const bool later_side : {false, true})
+        {
+            const bool settled = later_side
+                                     ? settledAt(judges.size() - self_pos, later, settles) != 0
+                                     : settledAt(self_pos, earlier, settles) != 0;
+            if (settled && gone) return Verdict::Gone;
+            held = held || settled;
+        }
+        return held ? Verdict::Held : Verdict::Unjudged;
     };
     // Below half the clearance, a mover's pillar holds the ground under it, or the mover's own
     // lowest part at the ground's height: a car's wheels and sill, a walker's feet, where a
@@ -1077,18 +1135,17 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // 01's car 28 m away at 16 rings, its lowest ring 0.05 m above the road around it). Each
     // such entry goes with the mover on its own evidence: not on a surface along the beams
     // (alongBeams(): ground met at grazing incidence) and seen through outside the time it was
-    // seen occupied, by the beams through its own cell (goneByOwnBeams(); either end of its
+    // seen occupied, by the beams through its own cell (ownBeamsVerdict(); either end of its
     // run, as verdict()). The ground under a mover is seen occupied by the scans before and
     // after the mover stood on it.
     // Whether entry k lies on a surface along the beams (alongBeams(), in the scan's own image).
     auto alongBeamsAt = [&](uint32_t k)
     { return alongBeams(ownJudge(), worldOf(scan.index[k]), margin); };
-    auto ownEvidence = [&](uint32_t k)
-    {
-        if (alongBeamsAt(k)) return false;
-        const uint32_t first = scan.index[k], last = lastOfRun(first);
-        return goneByOwnBeams(first) || (last != first && goneByOwnBeams(last));
-    };
+    // An entry's verdict by the beams through its own cells (ownBeamsVerdict()); none for one
+    // on a surface along the beams.
+    auto ownVerdict = [&](uint32_t k)
+    { return alongBeamsAt(k) ? Verdict::Unjudged : runVerdict(k, ownBeamsVerdict); };
+    auto ownEvidence = [&](uint32_t k) { return ownVerdict(k) == Verdict::Gone; };
     std::size_t marked = 0;
     // Marks pillar p's points from half the clearance above its ground `low` up, and those
     // below with their own evidence.
@@ -1149,6 +1206,70 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // The ground of pillar p when its lowest return is part of what stands there (hidden).
     auto groundBelowLowest = [&](std::size_t p)
     { return object.ground(scan, p, scan.cells[ObjectTest::lowestEntry(scan, p)], true); };
+    // The ground at the sensor's feet, for topSeenByOneRingGone() (ringed sensors): the lowest
+    // return of the pillars nearest the sensor (within two pillars of the nearest that holds
+    // any). Less than an object's height above it, nothing that far below lies in front (the
+    // ground along the beams, most pillars): asked before anything in the image.
+    int32_t feet = std::numeric_limits<int32_t>::min();
+    if (rings)
+    {
+        const GridGeometry& geo = grid.geometry();
+        std::vector<double> dist2(scan.pillarCount());
+        double nearest2 = std::numeric_limits<double>::infinity();
+        for (std::size_t p = 0; p < scan.pillarCount(); ++p)
+        {
+            const PillarIndex idx = unpackKey(scan.keys[p]);
+            const double dx = geo.centreX(idx.m) - t.x(), dy = geo.centreY(idx.n) - t.y();
+            dist2[p] = dx * dx + dy * dy;
+            nearest2 = std::min(nearest2, dist2[p]);
+        }
+        const double within = std::sqrt(nearest2) + 2.0 * geo.pillar_size;
+        for (std::size_t p = 0; p < scan.pillarCount(); ++p)
+            if (dist2[p] <= within * within)
+            {
+                const int32_t c = scan.cells[ObjectTest::lowestEntry(scan, p)];
+                feet = feet == std::numeric_limits<int32_t>::min() ? c : std::min(feet, c);
+            }
+    }
+    // What shows above something standing in front of it, seen by one ring of a sparse LiDAR
+    // (a walker's head over a parked car, 12 m from an HDL-32E): too little for an object, and
+    // with no neighbouring ring on it, not known to face the beams (facesBeams()), so the rule
+    // below does not test it. Where pillar p's lowest return is hidden that way (groundHidden(),
+    // its surface facing the beams along its ring), stands at least an object's height above
+    // the foot of what hides it (risesOverFront(): not the ground or a kerb behind a barrier),
+    // and every entry of the pillar lies on a surface smooth along its ring (facesBeams() by
+    // the row alone: not foliage, whose returns scatter in range from beam to beam), the
+    // pillar is the top of what stands behind. Its entries are judged by the beams through
+    // their own cells that passed below them (ownBeamsVerdict()): between two rings, a
+    // neighbouring row's beam passes over or under such a top, and one a little above it
+    // passes over it whether or not it is there. Not asked to lie off a surface along the
+    // beams (alongBeams()): the next ring up passes over such a top and lands beyond, the next
+    // one down meets what hides it, as on the ground. Whether that shows it gone is the
+    // answer: a pillar that is not goes on to the tests of the small ones below.
+    auto topSeenByOneRingGone = [&](std::size_t p)
+    {
+        const uint32_t low_k = ObjectTest::lowestEntry(scan, p);
+        if (feet != std::numeric_limits<int32_t>::min() &&
+            (static_cast<double>(scan.cells[low_k]) - feet) * res < object.min_extent)
+            return false;
+        const uint32_t low = scan.index[low_k];
+        if (!risesOverFront(ownJudge(), Eigen::Vector3d(pts.x[low], pts.y[low], pts.z[low]), margin,
+                            object.min_extent))
+            return false;
+        const Eigen::Vector3d lowest = worldOf(low);
+        for (uint32_t k = scan.offsets[p]; k < scan.offsets[p + 1]; ++k)
+        {
+            const auto c = cellOf(ownJudge(), worldOf(scan.index[k]));
+            if (!c || !facesBeams(ownJudge(), *c, margin, true)) return false;
+        }
+        if (!groundHidden(ownJudge(), lowest, margin, object.min_extent, true)) return false;
+        tested.clear();
+        for (uint32_t k = scan.offsets[p]; k < scan.offsets[p + 1]; ++k) tested.push_back(k);
+        return reachesShare(
+            tested, prm.free_space_fraction,
+            [&](uint32_t k)
+            { return runVerdict(k, [&](uint32_t i) { return ownBeamsVerdict(i, true); }); });
+    };
     for (std::size_t p = 0; p < scan.pillarCount(); ++p)
     {
         bool any_dynamic = false;
@@ -1199,6 +1320,8 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
                 mover = true;
             }
         }
+        else if (!any_dynamic && rings && topSeenByOneRingGone(p))
+            mark(p, scan.cells[ObjectTest::lowestEntry(scan, p)] - below);
         else
         {
             bool seen_empty = false;
