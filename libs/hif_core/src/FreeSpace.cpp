@@ -1118,16 +1118,11 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             gone = v == View::Free;
             return gone || v == View::Occupied;
         };
-        bool held = false;
-        for (const bool later_side : {false, true})
-        {
-            const bool settled = later_side
-                                     ? settledAt(judges.size() - self_pos, later, settles) != 0
-                                     : settledAt(self_pos, earlier, settles) != 0;
-            if (settled && gone) return Verdict::Gone;
-            held = held || settled;
-        }
-        return held ? Verdict::Held : Verdict::Unjudged;
+        const bool before = settledAt(self_pos, earlier, settles) != 0;
+        if (before && gone) return Verdict::Gone;
+        const bool after = settledAt(judges.size() - self_pos, later, settles) != 0;
+        if (after && gone) return Verdict::Gone;
+        return before || after ? Verdict::Held : Verdict::Unjudged;
     };
     // Below half the clearance, a mover's pillar holds the ground under it, or the mover's own
     // lowest part at the ground's height: a car's wheels and sill, a walker's feet, where a
@@ -1252,17 +1247,17 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         if (feet != std::numeric_limits<int32_t>::min() &&
             (static_cast<double>(scan.cells[low_k]) - feet) * res < object.min_extent)
             return false;
+        // The scan's own points are in its sensor frame, its own image's.
+        auto sensorPoint = [&](uint32_t i)
+        { return Eigen::Vector3d(pts.x[i], pts.y[i], pts.z[i]); };
         const uint32_t low = scan.index[low_k];
-        if (!risesOverFront(ownJudge(), Eigen::Vector3d(pts.x[low], pts.y[low], pts.z[low]), margin,
-                            object.min_extent))
-            return false;
-        const Eigen::Vector3d lowest = worldOf(low);
+        if (!risesOverFront(ownJudge(), sensorPoint(low), margin, object.min_extent)) return false;
         for (uint32_t k = scan.offsets[p]; k < scan.offsets[p + 1]; ++k)
         {
-            const auto c = cellOf(ownJudge(), worldOf(scan.index[k]));
+            const auto c = cellAt(*ownJudge().layout, sensorPoint(scan.index[k]));
             if (!c || !facesBeams(ownJudge(), *c, margin, true)) return false;
         }
-        if (!groundHidden(ownJudge(), lowest, margin, object.min_extent, true)) return false;
+        if (!groundHidden(ownJudge(), worldOf(low), margin, object.min_extent, true)) return false;
         tested.clear();
         for (uint32_t k = scan.offsets[p]; k < scan.offsets[p + 1]; ++k) tested.push_back(k);
         return reachesShare(
