@@ -1538,37 +1538,41 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // surface along the beams (alongBeams(), seen in the scan's own image) is not judged.
     auto groundUpVerdict = [&](uint32_t k)
     { return alongBeamsAt(k) ? Verdict::Unjudged : verdict(k); };
-    for (const auto& [p, seen_empty, lowest_hidden] : small)
+    // A pillar too small for an object, tested as new (below): whether it was shown gone.
+    auto testNew = [&](const Small& sm)
     {
-        auto hiddenBelow = [&, p = p, known = lowest_hidden]
-        { return known ? *known : lowestHidden(p); };
-        if (!seen_empty && !inOrNextToGone(unpackKey(scan.keys[p])))
-        {
-            // Not next to a mover, but new: every entry clear of its ground held static by this
-            // sighting alone (ScanBuckets::seen_once; online, the first sighting there: a car
-            // 36 m away behind a fence, two rings of it over the fence, each pillar too little
-            // for an object). Something that stands where the beams of other scans passed is a
-            // mover; what is seen for the first time from a new place (out of reach or hidden
-            // before) was not seen through either, and stays. Judged as from the ground up: an
-            // entry on a surface along the beams (terrain on a slope) is no evidence. (Offline,
-            // with p_empty_init under 0.5, what was seen once is dynamic by the map already.)
-            const auto first = scan.seen_once.begin() + scan.offsets[p];
-            if (std::none_of(first, scan.seen_once.begin() + scan.offsets[p + 1],
-                             [](uint8_t once) { return once != 0; }))
-                continue;
-            const auto found =
-                object.entries(scan, p, pts, is_dynamic, tested, object.clearance, false);
-            const bool fresh =
-                !tested.empty() && std::all_of(tested.begin(), tested.end(),
-                                               [&](uint32_t k) { return scan.seen_once[k] != 0; });
-            if (!fresh || !reachesShare(tested, prm.free_space_fraction, groundUpVerdict)) continue;
-            // Its lowest return is part of it where the scan could not see below it (the ground
-            // out of sight: a car behind a fence, its lowest ring the pillar's lowest return).
-            mark(p, hiddenBelow() ? groundBelowLowest(p) : found.low);
-            continue;
-        }
-        auto found =
-            object.entries(scan, p, pts, is_dynamic, tested, object.clearance, hiddenBelow());
+        const std::size_t p = sm.p;
+        // Not next to a mover, but new: every entry clear of its ground held static by this
+        // sighting alone (ScanBuckets::seen_once; online, the first sighting there: a car 36 m
+        // away behind a fence, two rings of it over the fence, each pillar too little for an
+        // object). Something that stands where the beams of other scans passed is a mover; what
+        // is seen for the first time from a new place (out of reach or hidden before) was not
+        // seen through either, and stays. Judged as from the ground up: an entry on a surface
+        // along the beams (terrain on a slope) is no evidence. (Offline, with p_empty_init under
+        // 0.5, what was seen once is dynamic by the map already.)
+        const auto first = scan.seen_once.begin() + scan.offsets[p];
+        if (std::none_of(first, scan.seen_once.begin() + scan.offsets[p + 1],
+                         [](uint8_t once) { return once != 0; }))
+            return false;
+        const auto found =
+            object.entries(scan, p, pts, is_dynamic, tested, object.clearance, false);
+        const bool fresh =
+            !tested.empty() && std::all_of(tested.begin(), tested.end(),
+                                           [&](uint32_t k) { return scan.seen_once[k] != 0; });
+        if (!fresh || !reachesShare(tested, prm.free_space_fraction, groundUpVerdict)) return false;
+        // Its lowest return is part of it where the scan could not see below it (the ground
+        // out of sight: a car behind a fence, its lowest ring the pillar's lowest return).
+        const bool hidden = sm.lowest_hidden ? *sm.lowest_hidden : lowestHidden(p);
+        mark(p, hidden ? groundBelowLowest(p) : found.low);
+        return true;
+    };
+    // A pillar too small for an object next to a mover, or where the map saw part of it empty:
+    // tested as part of the mover, from its ground up where nothing is clear of it.
+    auto testWithMover = [&](const Small& sm)
+    {
+        const std::size_t p = sm.p;
+        const bool hidden = sm.lowest_hidden ? *sm.lowest_hidden : lowestHidden(p);
+        auto found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance, hidden);
         bool share = false;
         if (!tested.empty())
             share = reachesShare(tested, prm.free_space_fraction, verdict);
@@ -1578,6 +1582,42 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             share = reachesShare(tested, prm.free_space_fraction, groundUpVerdict);
         }
         if (share) mark(p, found.low);
+    };
+    // The pillars shown gone as new are a mover's too (a car crossing 36 m away, seen by two or
+    // three rings: where two meet it, the pillar is shown new and gone; at its ends one ring
+    // alone, its pillars' ground to the test, holds nothing to test as new): those next to them
+    // that were tested as new and not shown gone are then tested with the mover, once.
+    std::vector<std::pair<int64_t, int64_t>> gone_new;
+    std::vector<std::size_t> tested_new;  // of `small`, tested as new and not shown gone
+    for (std::size_t s = 0; s < small.size(); ++s)
+    {
+        const Small& sm = small[s];
+        const PillarIndex idx = unpackKey(scan.keys[sm.p]);
+        if (sm.seen_empty || inOrNextToGone(idx))
+            testWithMover(sm);
+        else if (testNew(sm))
+            gone_new.emplace_back(idx.m, idx.n);
+        else
+            tested_new.push_back(s);
+    }
+    // A few pillars shown new (a handful of movers), thousands tested as new: each of the latter
+    // is compared with the former, within their bounding box.
+    if (gone_new.empty()) return marked;
+    int64_t m0 = gone_new[0].first, m1 = m0, n0 = gone_new[0].second, n1 = n0;
+    for (const auto& [m, n] : gone_new)
+    {
+        m0 = std::min(m0, m), m1 = std::max(m1, m);
+        n0 = std::min(n0, n), n1 = std::max(n1, n);
+    }
+    for (const std::size_t s : tested_new)
+    {
+        const PillarIndex idx = unpackKey(scan.keys[small[s].p]);
+        const int64_t m = idx.m, n = idx.n;
+        if (m < m0 - 1 || m > m1 + 1 || n < n0 - 1 || n > n1 + 1) continue;
+        if (std::any_of(gone_new.begin(), gone_new.end(),
+                        [&](const auto& g)
+                        { return std::abs(g.first - m) <= 1 && std::abs(g.second - n) <= 1; }))
+            testWithMover(small[s]);
     }
     return marked;
 }
