@@ -149,6 +149,26 @@ Look look(const Judge& j, const ImageCell& cell, const RangeMargin& margin,
     return {near ? View::Vetoed : View::Free, e, row};  // passed, unless something is near it
 }
 
+/** Whether scan `j`'s beams toward world point `p` (in its `cell`), none of which returned
+ *  (look(): no return in the cell or the eight around it), passed it into open sky: `p` lies
+ *  above the scan's sensor, and in the rows of `cell` and beside it the scan's beams returned
+ *  from beyond `p` (by more than the margin) within `half_width` metres of it to one side or
+ *  the other at its distance. Those rings were firing there and reached that far; had something
+ *  stood at `p`, they would have returned from it. Below the sensor the ground returns them. */
+bool skyBeyond(const Judge& j, const Eigen::Vector3d& p, const ImageCell& cell,
+               const RangeMargin& margin, double half_width)
+{
+    if (!((p - j.t).z() > 0.0)) return false;
+    const RangeImageLayout& l = *j.layout;
+    const double beyond = cell.d + margin.at(cell.d);
+    const int span = static_cast<int>(std::ceil(half_width / cell.d / (2.0 * M_PI / l.cols)));
+    for (int dc = 1; dc <= span; ++dc)
+        for (const int c : {wrapCol(cell.c + dc, l.cols), wrapCol(cell.c - dc, l.cols)})
+            for (int r = std::max(0, cell.r - 1); r <= std::min(l.rows - 1, cell.r + 1); ++r)
+                if (const float f = j.at(r, c); std::isfinite(f) && f > beyond) return true;
+    return false;
+}
+
 /** Where a beam toward a world point in `cell` returned (`range`, +inf: nothing), relative
  *  to the point: the return's range minus the point's (negative: nearer), with the margin at
  *  that distance. None when the beam returned nothing. */
@@ -753,7 +773,11 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // shows it gone. On each side of the scan, walking in from the farthest judge, the first
     // one with an opinion decides that side: seen through, gone; occupied, the stretch reaches
     // it, so no nearer judge of that side can show the point gone.
-    auto pointVerdict = [&](uint32_t i)
+    // With `sky` (an entry held static by one sighting alone, ScanBuckets::seen_once), a judge
+    // whose beams toward the point passed into open sky (skyBeyond()) saw through it as well:
+    // the map's own rule for such an interval (BeamGate::skyFor()).
+    const double sky_half_width = grid.geometry().pillar_size;
+    auto pointVerdict = [&](uint32_t i, bool sky = false)
     {
         const Eigen::Vector3d p_w = worldOf(i);
         const Eigen::Vector3d from_self = p_w - t;
@@ -827,6 +851,13 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             const ImageCell* c = cellIn(j);
             if (!c) return false;
             const Look v = look(judges[j], *c, margin);
+            if (sky && rings && v.view == View::None && !std::isfinite(v.range) &&
+                skyBeyond(judges[j], p_w, *c, margin, sky_half_width))
+            {
+                judged = true;
+                gone = true;
+                return true;
+            }
             // Which side of the point the beam passed: a neighbouring row's by its row, the
             // point's own row's (its cell's beam, not one beside it) by the ring in that row.
             std::optional<bool> above;
@@ -1092,6 +1123,13 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         return a;
     };
     auto verdict = [&](uint32_t k) { return runVerdict(k, pointVerdict); };
+    // verdict(), with a judge's beams into open sky counted where the entry is new
+    // (ScanBuckets::seen_once).
+    auto newVerdict = [&](uint32_t k)
+    {
+        if (!scan.seen_once[k]) return verdict(k);
+        return runVerdict(k, [&](uint32_t i) { return pointVerdict(i, true); });
+    };
 
     // The verdict of the judges on input point i by the beams through its own cell alone (the
     // stretch rule of pointVerdict(), walking in from the farthest judge on each side): where a
@@ -1537,7 +1575,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // Tested from its ground up, the pillar's ground is among what is tested: an entry on a
     // surface along the beams (alongBeams(), seen in the scan's own image) is not judged.
     auto groundUpVerdict = [&](uint32_t k)
-    { return alongBeamsAt(k) ? Verdict::Unjudged : verdict(k); };
+    { return alongBeamsAt(k) ? Verdict::Unjudged : newVerdict(k); };
     // A pillar too small for an object, tested as new (below): whether it was shown gone.
     auto testNew = [&](const Small& sm)
     {
@@ -1575,7 +1613,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         auto found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance, hidden);
         bool share = false;
         if (!tested.empty())
-            share = reachesShare(tested, prm.free_space_fraction, verdict);
+            share = reachesShare(tested, prm.free_space_fraction, newVerdict);
         else
         {
             found = object.entries(scan, p, pts, is_dynamic, tested, 0);
