@@ -91,6 +91,27 @@ struct RangeMargin
     [[nodiscard]] double at(double d) const { return base + per_m * d; }
 };
 
+/** Whether scan `j`'s beams toward world point `p` (in its `cell`), none of which returned
+ *  (look(): no return in the cell or the eight around it), passed it into open sky: `p` lies
+ *  above the scan's sensor, and in the rows of `cell` and beside it the scan's beams returned
+ *  from beyond `p` (by more than the margin) within `half_width` metres of it to one side or
+ *  the other at its distance. Those rings were firing there and reached that far; had something
+ *  stood at `p`, they would have returned from it. Below the sensor the ground returns them. */
+bool skyBeyond(const Judge& j, const Eigen::Vector3d& p, const ImageCell& cell,
+               const RangeMargin& margin, double half_width)
+{
+    if (!((p - j.t).z() > 0.0)) return false;
+    const RangeImageLayout& l = *j.layout;
+    const double beyond = cell.d + margin.at(cell.d);
+    const int span = std::min(
+        l.cols / 2, static_cast<int>(std::ceil(half_width / cell.d / (2.0 * M_PI / l.cols))));
+    for (int dc = 1; dc <= span; ++dc)
+        for (const int c : {wrapCol(cell.c + dc, l.cols), wrapCol(cell.c - dc, l.cols)})
+            for (int r = std::max(0, cell.r - 1); r <= std::min(l.rows - 1, cell.r + 1); ++r)
+                if (const float f = j.at(r, c); std::isfinite(f) && f > beyond) return true;
+    return false;
+}
+
 /** What one scan saw at a point, and with which beam. */
 struct Look
 {
@@ -110,7 +131,8 @@ struct SurfaceAround
 /** What scan `j` saw at a world point in its `cell`: from the beam of that cell, else (none
  *  there, unless `own_beam_only`) from the nearest one around it. */
 Look look(const Judge& j, const ImageCell& cell, const RangeMargin& margin,
-          bool own_beam_only = false)
+          bool own_beam_only = false, const Eigen::Vector3d* sky = nullptr,
+          double sky_half_width = 0.0)
 {
     const int r = cell.r, c = cell.c;
     const double d = cell.d;
@@ -144,29 +166,13 @@ Look look(const Judge& j, const ImageCell& cell, const RangeMargin& margin,
             }
         }
     }
-    if (!std::isfinite(e)) return {View::None, e, row};  // no beam near the point's direction
+    if (!std::isfinite(e))  // no beam near the point's direction: into open sky, or unknown
+    {
+        if (sky && skyBeyond(j, *sky, cell, margin, sky_half_width)) return {View::Free, e, -1};
+        return {View::None, e, row};
+    }
     if (e <= d + m) return {e > d - m ? View::Occupied : View::None, e, row};
     return {near ? View::Vetoed : View::Free, e, row};  // passed, unless something is near it
-}
-
-/** Whether scan `j`'s beams toward world point `p` (in its `cell`), none of which returned
- *  (look(): no return in the cell or the eight around it), passed it into open sky: `p` lies
- *  above the scan's sensor, and in the rows of `cell` and beside it the scan's beams returned
- *  from beyond `p` (by more than the margin) within `half_width` metres of it to one side or
- *  the other at its distance. Those rings were firing there and reached that far; had something
- *  stood at `p`, they would have returned from it. Below the sensor the ground returns them. */
-bool skyBeyond(const Judge& j, const Eigen::Vector3d& p, const ImageCell& cell,
-               const RangeMargin& margin, double half_width)
-{
-    if (!((p - j.t).z() > 0.0)) return false;
-    const RangeImageLayout& l = *j.layout;
-    const double beyond = cell.d + margin.at(cell.d);
-    const int span = static_cast<int>(std::ceil(half_width / cell.d / (2.0 * M_PI / l.cols)));
-    for (int dc = 1; dc <= span; ++dc)
-        for (const int c : {wrapCol(cell.c + dc, l.cols), wrapCol(cell.c - dc, l.cols)})
-            for (int r = std::max(0, cell.r - 1); r <= std::min(l.rows - 1, cell.r + 1); ++r)
-                if (const float f = j.at(r, c); std::isfinite(f) && f > beyond) return true;
-    return false;
 }
 
 /** Where a beam toward a world point in `cell` returned (`range`, +inf: nothing), relative
@@ -850,18 +856,12 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         {
             const ImageCell* c = cellIn(j);
             if (!c) return false;
-            const Look v = look(judges[j], *c, margin);
-            if (sky && rings && v.view == View::None && !std::isfinite(v.range) &&
-                skyBeyond(judges[j], p_w, *c, margin, sky_half_width))
-            {
-                judged = true;
-                gone = true;
-                return true;
-            }
+            const Look v =
+                look(judges[j], *c, margin, false, sky && rings ? &p_w : nullptr, sky_half_width);
             // Which side of the point the beam passed: a neighbouring row's by its row, the
             // point's own row's (its cell's beam, not one beside it) by the ring in that row.
             std::optional<bool> above;
-            if (rings && v.view == View::Free)
+            if (rings && v.view == View::Free && v.row >= 0)
             {
                 if (v.row != c->r)
                     above = v.row > c->r;
@@ -1124,10 +1124,13 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     };
     auto verdict = [&](uint32_t k) { return runVerdict(k, pointVerdict); };
     // verdict(), with a judge's beams into open sky counted where the entry is new
-    // (ScanBuckets::seen_once).
+    // (ScanBuckets::seen_once) and that one sighting makes it static in the map (online's
+    // p_empty_init; offline's holds it dynamic already, and the test has nothing to add).
+    const LogOddsModel model = LogOddsModel::of(grid);
+    const bool new_is_static = grid.isStaticLogOdds(model.empty_init + model.hit);
     auto newVerdict = [&](uint32_t k)
     {
-        if (!scan.seen_once[k]) return verdict(k);
+        if (!new_is_static || !scan.seen_once[k]) return verdict(k);
         return runVerdict(k, [&](uint32_t i) { return pointVerdict(i, true); });
     };
 
