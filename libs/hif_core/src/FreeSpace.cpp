@@ -118,7 +118,7 @@ struct Look
     View view;
     float range;  ///< of the beam through the point (that of its cell, else the nearest one)
     /** The row of the image that beam lies in: the point's own, or one above (greater) or
-     *  below it. */
+     *  below it; -1 for beams that passed into open sky (skyBeyond()), which returned nothing. */
     int row;
 };
 /** Where the surface of a point goes on in the image of the scan it was seen in: whether the
@@ -129,7 +129,9 @@ struct SurfaceAround
     bool down = true;
 };
 /** What scan `j` saw at a world point in its `cell`: from the beam of that cell, else (none
- *  there, unless `own_beam_only`) from the nearest one around it. */
+ *  there, unless `own_beam_only`) from the nearest one around it. With `sky` (the point, in the
+ *  world frame), where none around it returned, Free if they passed into open sky
+ *  (skyBeyond(), within `sky_half_width` metres). */
 Look look(const Judge& j, const ImageCell& cell, const RangeMargin& margin,
           bool own_beam_only = false, const Eigen::Vector3d* sky = nullptr,
           double sky_half_width = 0.0)
