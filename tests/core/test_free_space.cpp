@@ -297,11 +297,14 @@ WithAndWithout classifyWithAndWithout(const PillarGrid& grid, const FreeSpaceTes
 
 /** Online with `prm`: each of `scans` inserted, then classified with the past only, without the
  *  free-space test and with it (a test holding the scans before it); each scan's own into
- *  `per_scan` when given. */
+ *  `per_scan` when given. With `model`, the map's sensor model and its images' layout. */
 WithAndWithout onlineWithAndWithout(const std::vector<Scan>& scans, const Params& prm,
-                                    std::vector<WithAndWithout>* per_scan = nullptr)
+                                    std::vector<WithAndWithout>* per_scan = nullptr,
+                                    const std::optional<SensorModel>& model = std::nullopt)
 {
     PillarGrid grid(GridGeometry(), prm);
+    if (model) grid.setSensorModel(*model);
+    const RangeImageLayout layout = RangeImageLayout::forSensor(model);
     FreeSpaceTest past(FreeSpaceTest::capacityFor(prm));
     WithAndWithout r;
     for (const Scan& s : scans)
@@ -318,7 +321,7 @@ WithAndWithout onlineWithAndWithout(const std::vector<Scan>& scans, const Params
             per_scan->back().with.add(s, dyn);
             per_scan->back().without.add(s, dyn_map);
         }
-        past.add(s.view(), s.pose, kLayout);
+        past.add(s.view(), s.pose, layout);
     }
     return r;
 }
@@ -540,6 +543,28 @@ TEST(FreeSpaceTest, AMoversLowestRingAtTheRoadsHeightGoesWithIt)
     }
 }
 
+/** Ten scans, rings 1.7 degrees apart (a 16-beam LiDAR's), of a sensor standing before the
+ *  ground and a wall 45 m ahead: a box 0.4 m deep, 0.3-1.4 m above the road, crosses 22.2 m
+ *  ahead at 1.2 m per scan, its back at y = `back` in the first scan, `length` m long (kPerson). */
+std::vector<Scan> crossingBoxScans(double back, double length)
+{
+    std::vector<Scan> scans;
+    for (int i = 0; i < 10; ++i)
+    {
+        const Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+        const double y = back + 1.2 * i;
+        const std::pair<Eigen::Vector3d, Eigen::Vector3d> box{
+            Eigen::Vector3d(22.2, y, kGroundZ + 0.3),
+            Eigen::Vector3d(22.6, y + length, kGroundZ + 1.4)};
+        scans.push_back(rayScan(
+            pose, 60.0,
+            [&](const Eigen::Vector3d& d, double& range)
+            { return groundWallAndPerson(pose.translation(), d, 45.0, box, range); },
+            1.7));
+    }
+    return scans;
+}
+
 // Online, rings 1.7 degrees apart (a 16-beam LiDAR's), the sensor standing: a box 0.3-1.4 m
 // above the road crosses 22.2 m ahead at 1.2 m per scan, between the rings that meet the road
 // (20.7 and 32.4 m away), so two rings meet it, 0.54 and 1.20 m up, and the lower is its
@@ -550,36 +575,8 @@ TEST(FreeSpaceTest, AMoversLowestRingAtTheRoadsHeightGoesWithIt)
 TEST(FreeSpaceTest, OnlineAMoverTooSmallForAnObjectIsShownWhereItIsNew)
 {
     const SensorModel model = ringsEvery(1.7);
-    const RangeImageLayout layout = RangeImageLayout::forSensor(model);
-    std::vector<Scan> scans;
-    for (int i = 0; i < 10; ++i)
-    {
-        const Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-        const double y = -6.0 + 1.2 * i;
-        const std::pair<Eigen::Vector3d, Eigen::Vector3d> box{
-            Eigen::Vector3d(22.2, y - 0.4, kGroundZ + 0.3),
-            Eigen::Vector3d(22.6, y + 0.4, kGroundZ + 1.4)};
-        scans.push_back(rayScan(
-            pose, 60.0,
-            [&](const Eigen::Vector3d& d, double& range)
-            { return groundWallAndPerson(pose.translation(), d, 45.0, box, range); },
-            1.7));
-    }
-    const Params prm = onlineParams();
-    PillarGrid grid(GridGeometry(), prm);
-    grid.setSensorModel(model);
-    FreeSpaceTest past(FreeSpaceTest::capacityFor(prm));
-    Removed with, without;
-    for (const Scan& s : scans)
-    {
-        grid.insertScan(s.view(), s.pose);
-        std::vector<uint8_t> dyn, dyn_map;
-        grid.classify(s.view(), dyn, s.pose, &past);
-        grid.classify(s.view(), dyn_map, s.pose);
-        with.add(s, dyn);
-        without.add(s, dyn_map);
-        past.add(s.view(), s.pose, layout);
-    }
+    const auto [without, with] =
+        onlineWithAndWithout(crossingBoxScans(-6.4, 0.8), onlineParams(), nullptr, model);
     // Measured: 81 % of the box's 208 points removed (none in the first scan, which has no past;
     // none before new pillars were tested), the map alone none; no ground or wall point.
     EXPECT_GT(with.n[kPerson], 150u);
@@ -590,12 +587,6 @@ TEST(FreeSpaceTest, OnlineAMoverTooSmallForAnObjectIsShownWhereItIsNew)
         EXPECT_EQ(with.removed[w], without.removed[w]) << "kind " << int(w);
 }
 
-// Online, as above (rings 1.7 degrees apart, the sensor standing), a car crossing 22.2 m ahead
-// at 1.2 m per scan: its body 0.3-1.4 m above the road, met by two rings (0.54 and 1.20 m up),
-// and in front of it its bonnet, 0.3-0.8 m, met by the lower ring alone. The body's pillars are
-// new in the map and shown gone as such; the bonnet's hold one ring, their ground to the test,
-// so nothing of them is tested as new. They are part of the mover the body's pillars showed
-// (tested with it, from their ground up), not something seen for the first time from a new place.
 // Online, as above (rings 1.7 degrees apart, the sensor standing), a car 2 m long crossing 22.2
 // m ahead at 1.2 m per scan, 0.3-1.4 m above the road: two rings meet it, the lower its pillars'
 // ground to the test. Its front pillars are new in the map and shown gone as such; its back
@@ -604,36 +595,8 @@ TEST(FreeSpaceTest, OnlineAMoverTooSmallForAnObjectIsShownWhereItIsNew)
 TEST(FreeSpaceTest, OnlineWhatIsNextToAMoverShownNewGoesWithIt)
 {
     const SensorModel model = ringsEvery(1.7);
-    const RangeImageLayout layout = RangeImageLayout::forSensor(model);
-    std::vector<Scan> scans;
-    for (int i = 0; i < 10; ++i)
-    {
-        const Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-        const double y = -8.0 + 1.2 * i;  // the back of the car
-        const std::pair<Eigen::Vector3d, Eigen::Vector3d> car{
-            Eigen::Vector3d(22.2, y, kGroundZ + 0.3),
-            Eigen::Vector3d(22.6, y + 2.0, kGroundZ + 1.4)};
-        scans.push_back(rayScan(
-            pose, 60.0,
-            [&](const Eigen::Vector3d& d, double& range)
-            { return groundWallAndPerson(pose.translation(), d, 45.0, car, range); },
-            1.7));
-    }
-    const Params prm = onlineParams();
-    PillarGrid grid(GridGeometry(), prm);
-    grid.setSensorModel(model);
-    FreeSpaceTest past(FreeSpaceTest::capacityFor(prm));
-    Removed with, without;
-    for (const Scan& s : scans)
-    {
-        grid.insertScan(s.view(), s.pose);
-        std::vector<uint8_t> dyn, dyn_map;
-        grid.classify(s.view(), dyn, s.pose, &past);
-        grid.classify(s.view(), dyn_map, s.pose);
-        with.add(s, dyn);
-        without.add(s, dyn_map);
-        past.add(s.view(), s.pose, layout);
-    }
+    const auto [without, with] =
+        onlineWithAndWithout(crossingBoxScans(-8.0, 2.0), onlineParams(), nullptr, model);
     // Measured: 82.4 % of the car's 512 points removed (77.3 % with only the pillars next to a
     // mover shown otherwise tested with it; none in the first scan, which has no past), the
     // map alone none; no ground or wall point.
@@ -656,7 +619,6 @@ TEST(FreeSpaceTest, OnlineWhatIsNextToAMoverShownNewGoesWithIt)
 TEST(FreeSpaceTest, OnlineASkyBehindWhatIsNewIsSeenThrough)
 {
     const SensorModel model = ringsEvery(0.4);
-    const RangeImageLayout layout = RangeImageLayout::forSensor(model);
     constexpr double kSlope = 0.09, kFoot = 10.0, kCrest = 32.0, kGap = 5.0;
     const double top = kGroundZ + kSlope * (kCrest - kFoot);    // the flat beyond the crest
     const double floor_z = kGroundZ + kSlope * (30.0 - kFoot);  // the road under the trailer
@@ -701,21 +663,7 @@ TEST(FreeSpaceTest, OnlineASkyBehindWhatIsNewIsSeenThrough)
                 return w;
             }));
     }
-    const Params prm = onlineParams();
-    PillarGrid grid(GridGeometry(), prm);
-    grid.setSensorModel(model);
-    FreeSpaceTest past(FreeSpaceTest::capacityFor(prm));
-    Removed with, without;
-    for (const Scan& s : scans)
-    {
-        grid.insertScan(s.view(), s.pose);
-        std::vector<uint8_t> dyn, dyn_map;
-        grid.classify(s.view(), dyn, s.pose, &past);
-        grid.classify(s.view(), dyn_map, s.pose);
-        with.add(s, dyn);
-        without.add(s, dyn_map);
-        past.add(s.view(), s.pose, layout);
-    }
+    const auto [without, with] = onlineWithAndWithout(scans, onlineParams(), nullptr, model);
     // Measured: 60.6 % of the trailer's 545 points removed (49.9 % with the beams into the sky
     // no evidence: the scans in which it stands before the gap; none in the first scan, which
     // has no past), the map alone none; no ground or wall point.
