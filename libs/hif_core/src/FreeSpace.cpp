@@ -296,12 +296,24 @@ bool alongBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& m
     return sides[0] * sides[1] == -1;
 }
 
+/** How many of a range image's columns (`cols` in all) one horizontal step of the sensor spans
+ *  at column `c`, two at least: the columns are half a step on average
+ *  (RangeImageLayout::forSensor()), but pseudoAzimuth() packs them up to pi / 2 times denser
+ *  toward the axes (straight ahead, behind and to the sides), where a ring's neighbouring
+ *  returns lie up to four columns apart. */
+int stepColumns(int cols, int c)
+{
+    const double q = (c + 0.5) / (cols / 4.0);
+    const double f = q - std::floor(q);  // across its quarter of the turn, 0 to 1
+    return std::max(2, static_cast<int>(std::ceil(M_PI * (f * f + (1.0 - f) * (1.0 - f)))));
+}
+
 /** Whether the world point in `cell` of scan `own`'s image (the scan it was seen in) lies on
  *  a surface that faces the beams of `own`: in `own`'s image, the nearest returns beside it
- *  in its row (within two columns) and above and below it in its column (within one and a
- *  half beam spacings) that lie on its surface (within the margin of it; in the row and in
- *  the column, at least one does) lie within the margin's share for range noise and pose
- *  error (half its base) of its range. A beam a fraction of a cell off the point's direction
+ *  in its row (within a horizontal step of the sensor, stepColumns()) and above and below it in its
+ * column (within one and a half beam spacings) that lie on its surface (within the margin of it; in
+ * the row and in the column, at least one does) lie within the margin's share for range noise and
+ * pose error (half its base) of its range. A beam a fraction of a cell off the point's direction
  *  then returns where one toward the point would: a walker, a car's back. On a surface met
  *  at grazing incidence (a facade along the street, a windscreen) or in foliage,
  *  neighbouring beams return farther apart; returns beyond the margin are another surface
@@ -323,10 +335,11 @@ bool facesBeams(const Judge& own, const ImageCell& cell, const RangeMargin& marg
         on = true;
         return off <= 0.5 * margin.base;
     };
+    const int reach = stepColumns(cols, cell.c);
     for (int dir = -1; dir <= 1; dir += 2)
     {
         float f = std::numeric_limits<float>::infinity();
-        for (int k = 1; k <= 2 && !std::isfinite(f); ++k)
+        for (int k = 1; k <= reach && !std::isfinite(f); ++k)
             f = own.at(cell.r, wrapCol(cell.c + dir * k, cols));
         if (!check(f, in_row)) return false;
         nextInColumn(own, cell.r, cell.c, dir, f);
