@@ -41,17 +41,19 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
         free_space && !free_space->empty() && params_.free_space_window > 0;
     // ScanBuckets::seen_once and seen_twice: at most p_empty_init and one or two hits;
     // ScanBuckets::seen_empty: less than p_empty_init (in the update's own floats).
-    float seen_once = 0.0f, seen_twice = 0.0f, empty_init = 0.0f;
+    float seen_once = 0.0f, seen_twice = 0.0f, empty_init = 0.0f, at_max = 0.0f;
     if (free_space_test)
     {
         scan.floors.resize(scan.pillarCount());
         scan.seen_once.resize(scan.cells.size());
         scan.seen_twice.resize(scan.cells.size());
         scan.seen_empty.resize(scan.cells.size());
+        scan.at_max.resize(scan.cells.size());
         const detail::LogOddsModel model = detail::LogOddsModel::of(*this);
         seen_once = model.empty_init + model.hit + 1e-4f;
         seen_twice = model.empty_init + 2.0f * model.hit + 1e-4f;
         empty_init = model.empty_init;
+        at_max = model.lmax - 1e-4f;
     }
     std::atomic<std::size_t> n_static{0};
     detail::forRanges(detail::GridAccess::arena(*this), scan.pillarCount(), 256,
@@ -66,7 +68,7 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
                               for (uint32_t k = b; k < e; ++k)
                               {
                                   bool stat = prior_static;
-                                  bool once = false, twice = false, emptied = false;
+                                  bool once = false, twice = false, emptied = false, held = false;
                                   if (pil)
                                   {
                                       const Interval* iv = findInterval(*pil, scan.cells[k]);
@@ -75,12 +77,14 @@ ClassifyStats PillarGrid::classify(const PointsView& pts, std::vector<uint8_t>& 
                                       once = iv && iv->logodds <= seen_once;
                                       twice = iv && iv->logodds <= seen_twice;
                                       emptied = l < empty_init;
+                                      held = iv && iv->logodds >= at_max;
                                   }
                                   if (free_space_test)
                                   {
                                       scan.seen_once[k] = once;
                                       scan.seen_twice[k] = twice;
                                       scan.seen_empty[k] = emptied;
+                                      scan.at_max[k] = held;
                                   }
                                   is_dynamic[scan.index[k]] = stat ? 0 : 1;
                                   local_static += stat;

@@ -669,6 +669,9 @@ bool oneSurface(const std::vector<Sample>& a, const std::vector<Sample>& b, int 
  *  surface that faces the beams (facesBeams()). */
 constexpr std::size_t kSteadyJudges = 3;
 constexpr std::size_t kSteadyJudgesFacing = 2;
+/** Judges in a row that must have seen a place empty just before (or after) what stands there
+ *  now (markSeenThrough()): one is a flicker (a gap in a hedge that one scan sees through). */
+constexpr std::size_t kEmptyBeforeJudges = 2;
 
 /** Gone points needed among `judged` for a share `fraction`: at least one. */
 std::size_t needed(double fraction, std::size_t judged)
@@ -798,6 +801,10 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // whose beams toward the point passed into open sky (skyBeyond()) saw through it as well:
     // the map's own rule for such an interval (BeamGate::skyFor()).
     const double sky_half_width = grid.geometry().pillar_size;
+    // Whether the entry judged (runVerdict()) is held at p_max by the map
+    // (ScanBuckets::at_max): nothing there came lately, and the walk for a place seen empty
+    // just before what stands there is not made.
+    bool entry_at_max = false;
     auto pointVerdict = [&](uint32_t i, bool sky = false)
     {
         const Eigen::Vector3d p_w = worldOf(i);
@@ -956,6 +963,35 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         if (drifted(self_pos, earlier, settled_before) ||
             drifted(judges.size() - self_pos, later, settled_after))
             return Verdict::Gone;
+        // A place seen empty just before what stands there now (or just after): walking out
+        // from the nearest judge in time on one side, past those that see the point occupied
+        // (what stands there now), kEmptyBeforeJudges in a row that saw through it, before any
+        // sees it occupied again or returns near it. The walk in from the farthest judge settles
+        // such a side as occupied all along where something stood there earlier still (a
+        // cyclist riding in another's track, half a second behind): it guards against a gap
+        // that one scan sees in a hedge or foliage. Two scans in a row are no flicker, and the
+        // point must lie on a surface that faces the beams (facesBeams(): not foliage).
+        auto emptyBefore = [&](std::size_t count, auto judgeAt)
+        {
+            std::size_t run = 0;
+            for (std::size_t k = 0; k < count; ++k)
+            {
+                const std::size_t j = judgeAt(k);
+                const ImageCell* c = cellIn(j);
+                if (!c) return false;
+                const View v = look(judges[j], *c, margin).view;
+                if (v == View::Free && ++run >= kEmptyBeforeJudges) return true;
+                if (run > 0 && (v == View::Vetoed || v == View::Occupied)) return false;
+            }
+            return false;
+        };
+        if (!entry_at_max &&
+            (emptyBefore(self_pos, earlier) || emptyBefore(judges.size() - self_pos, later)) &&
+            facesTheBeams())
+        {
+            judged = true;
+            return Verdict::Gone;
+        }
         // Walking out from the nearest judge in time on one side (`count` judges, the k-th
         // nearest judgeAt(k)): each beam toward the point that returned goes to take(offset,
         // k), which says whether the walk goes on, has found the surface it looks for, or has
@@ -1130,6 +1166,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // gone and its last point's is known.
     auto runVerdict = [&](uint32_t k, auto&& of)
     {
+        entry_at_max = scan.at_max[k] != 0;
         const uint32_t first = scan.index[k], last = lastOfRun(first);
         const Verdict a = of(first);
         if (a == Verdict::Gone || last == first) return a;

@@ -82,6 +82,9 @@ struct ScanBuckets
      *  saw the place empty more often than occupied, so what stands there now moved in or is
      *  leaving. */
     std::vector<uint8_t> seen_empty;
+    /** Per cell entry (as seen_once): 1 when its interval in the map is at p_max, held static
+     *  as firmly as the map can: no sign that what stands there now came or goes. */
+    std::vector<uint8_t> at_max;
 
     Eigen::Vector3d sensor = Eigen::Vector3d::Zero();  ///< sensor position, world frame
     Eigen::Matrix3d world_to_sensor = Eigen::Matrix3d::Identity();  ///< rotation
