@@ -45,6 +45,9 @@ struct Judge
                 &s.image, &s.layout};
     }
 
+    /** World point `p` in this scan's sensor frame. */
+    [[nodiscard]] Eigen::Vector3d toSensor(const Eigen::Vector3d& p) const { return Rt * (p - t); }
+
     /** Range of the nearest return in cell (r, c), metres; +inf for none. */
     [[nodiscard]] float at(int r, int c) const
     {
@@ -65,7 +68,7 @@ struct ImageCell
 std::optional<ImageCell> cellAt(const RangeImageLayout& l, const Eigen::Vector3d& q);
 std::optional<ImageCell> cellOf(const Judge& j, const Eigen::Vector3d& p)
 {
-    return cellAt(*j.layout, j.Rt * (p - j.t));
+    return cellAt(*j.layout, j.toSensor(p));
 }
 /** cellOf() for `q`, a point in the judge's sensor frame (`l`, its image's layout). */
 std::optional<ImageCell> cellAt(const RangeImageLayout& l, const Eigen::Vector3d& q)
@@ -270,7 +273,7 @@ std::optional<bool> beamAbove(const Judge& j, int row, const Eigen::Vector3d& p,
     const double lo = l.tan_min + row * l.tan_res;
     const auto ring = std::lower_bound(ring_tan.begin(), ring_tan.end(), lo);
     if (ring == ring_tan.end() || *ring >= lo + l.tan_res) return std::nullopt;
-    const Eigen::Vector3d q = j.Rt * (p - j.t);
+    const Eigen::Vector3d q = j.toSensor(p);
     return *ring * std::hypot(q.x(), q.y()) > q.z();
 }
 
@@ -409,7 +412,7 @@ bool groundHidden(const Judge& own, const Eigen::Vector3d& p, const RangeMargin&
     if (r1 < 0 || !(f1 < in_front)) return false;
     int r = nextInColumn(own, r1, cell->c, -1, f);
     if (r < 0) return false;
-    const ColumnPlaces column(own, own.Rt * (p - own.t));
+    const ColumnPlaces column(own, own.toSensor(p));
     Eigen::Vector2d above = column.at(r, f);
     if (ColumnPlaces::steep(column.at(r1, f1), above)) return true;
     if (!facesBeams(own, *cell, margin, row_only)) return false;
@@ -483,7 +486,7 @@ bool standsAboveGround(const Judge& own, const Eigen::Vector3d& p, const RangeMa
     const int r1 = nextInColumn(own, cell->r, cell->c, -1, f1);
     const int r2 = r1 < 0 ? -1 : nextInColumn(own, r1, cell->c, -1, f2);
     if (r2 < 0) return false;
-    const ColumnPlaces column(own, own.Rt * (p - own.t));
+    const ColumnPlaces column(own, own.toSensor(p));
     const Eigen::Vector2d a = column.at(r1, f1), b = column.at(r2, f2);
     if (!(a.x() - b.x() > 0.0)) return false;  // no line running away from the sensor
     const Eigen::Vector3d w = p - own.t;       // from the sensor, world axes
@@ -643,9 +646,10 @@ struct Sample
 
 /** Whether the classified scan's own image shows one surface across two pillars: a sample of
  *  each (`a`, `b`, each sorted by row) next to each other, within one and a half beam
- *  spacings in the column (three rows of half a spacing) and two columns in the row (the
- *  neighbours alongBeams() and facesBeams() read; `cols`, the image's columns, wrap around
- *  the azimuth), at ranges within `tol` of each other. */
+ *  spacings in the column (three rows of half a spacing) and two columns in the row (`cols`,
+ *  the image's columns, wrap around the azimuth), at ranges within `tol` of each other. Near
+ *  the axes a ring's neighbouring returns can lie farther apart (stepColumns(), which
+ *  facesBeams() reads): there two samples of one surface in the same row may not meet. */
 bool oneSurface(const std::vector<Sample>& a, const std::vector<Sample>& b, int cols, double tol)
 {
     constexpr int kRows = 3;
