@@ -805,11 +805,10 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // whose beams toward the point passed into open sky (skyBeyond()) saw through it as well:
     // the map's own rule for such an interval (BeamGate::skyFor()).
     const double sky_half_width = grid.geometry().pillar_size;
-    // Whether the entry judged (runVerdict()) is held at p_max by the map
-    // (ScanBuckets::at_max): nothing there came lately, and the walk for a place seen empty
-    // just before what stands there is not made.
-    bool entry_at_max = false;
-    auto pointVerdict = [&](uint32_t i, bool sky = false)
+    // With `at_max` (its entry's interval held at p_max by the map, ScanBuckets::at_max),
+    // nothing there came lately, and the walk for a place seen empty just before what stands
+    // there is not made.
+    auto pointVerdict = [&](uint32_t i, bool sky, bool at_max)
     {
         const Eigen::Vector3d p_w = worldOf(i);
         const Eigen::Vector3d from_self = p_w - t;
@@ -989,7 +988,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             }
             return false;
         };
-        if (!entry_at_max &&
+        if (!at_max &&
             (emptyBefore(self_pos, earlier) || emptyBefore(judges.size() - self_pos, later)) &&
             facesTheBeams())
         {
@@ -1170,7 +1169,6 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // gone and its last point's is known.
     auto runVerdict = [&](uint32_t k, auto&& of)
     {
-        entry_at_max = scan.at_max[k] != 0;
         const uint32_t first = scan.index[k], last = lastOfRun(first);
         const Verdict a = of(first);
         if (a == Verdict::Gone || last == first) return a;
@@ -1178,17 +1176,20 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         if (b != Verdict::Unjudged) return b;
         return a;
     };
-    auto verdict = [&](uint32_t k) { return runVerdict(k, pointVerdict); };
+    // An entry's verdict by pointVerdict(), with a judge's beams into open sky counted or not.
+    auto entryVerdict = [&](uint32_t k, bool sky)
+    {
+        const bool at_max = scan.at_max[k] != 0;
+        return runVerdict(k, [&](uint32_t i) { return pointVerdict(i, sky, at_max); });
+    };
+    auto verdict = [&](uint32_t k) { return entryVerdict(k, false); };
     // verdict(), with a judge's beams into open sky counted where the entry is new
     // (ScanBuckets::seen_once) and that one sighting makes it static in the map (online's
     // p_empty_init; offline's holds it dynamic already, and the test has nothing to add).
     const LogOddsModel model = LogOddsModel::of(grid);
     const bool new_is_static = grid.isStaticLogOdds(model.empty_init + model.hit);
     auto newVerdict = [&](uint32_t k)
-    {
-        if (!new_is_static || !scan.seen_once[k]) return verdict(k);
-        return runVerdict(k, [&](uint32_t i) { return pointVerdict(i, true); });
-    };
+    { return entryVerdict(k, new_is_static && scan.seen_once[k]); };
 
     // The verdict of the judges on input point i by the beams through its own cell alone (the
     // stretch rule of pointVerdict(), walking in from the farthest judge on each side): where a
