@@ -1234,11 +1234,10 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // Whether entry k lies on a surface along the beams (alongBeams(), in the scan's own image).
     auto alongBeamsAt = [&](uint32_t k)
     { return alongBeams(ownJudge(), worldOf(scan.index[k]), margin); };
-    // An entry's verdict by the beams through its own cells (ownBeamsVerdict()); none for one
-    // on a surface along the beams.
-    auto ownVerdict = [&](uint32_t k)
-    { return alongBeamsAt(k) ? Verdict::Unjudged : runVerdict(k, ownBeamsVerdict); };
-    auto ownEvidence = [&](uint32_t k) { return ownVerdict(k) == Verdict::Gone; };
+    // Whether the beams through entry k's own cells show it gone (ownBeamsVerdict()); never for
+    // one on a surface along the beams.
+    auto ownEvidence = [&](uint32_t k)
+    { return !alongBeamsAt(k) && runVerdict(k, ownBeamsVerdict) == Verdict::Gone; };
     std::size_t marked = 0;
     // Marks pillar p's points from half the clearance above its ground `low` up, and those
     // below with their own evidence.
@@ -1636,6 +1635,9 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // surface along the beams (alongBeams(), seen in the scan's own image) is not judged.
     auto groundUpVerdict = [&](uint32_t k)
     { return alongBeamsAt(k) ? Verdict::Unjudged : newVerdict(k); };
+    // Whether the scan could not see below the lowest return of small pillar `sm`.
+    auto hiddenBelow = [&](const Small& sm)
+    { return sm.lowest_hidden ? *sm.lowest_hidden : lowestHidden(sm.p); };
     // A pillar too small for an object, tested as new (below): whether it was shown gone.
     auto testNew = [&](const Small& sm)
     {
@@ -1660,7 +1662,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         if (!fresh || !reachesShare(tested, prm.free_space_fraction, groundUpVerdict)) return false;
         // Its lowest return is part of it where the scan could not see below it (the ground
         // out of sight: a car behind a fence, its lowest ring the pillar's lowest return).
-        const bool hidden = sm.lowest_hidden ? *sm.lowest_hidden : lowestHidden(p);
+        const bool hidden = hiddenBelow(sm);
         mark(p, hidden ? groundBelowLowest(p) : found.low);
         return true;
     };
@@ -1669,7 +1671,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     auto testWithMover = [&](const Small& sm)
     {
         const std::size_t p = sm.p;
-        const bool hidden = sm.lowest_hidden ? *sm.lowest_hidden : lowestHidden(p);
+        const bool hidden = hiddenBelow(sm);
         auto found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance, hidden);
         bool share = false;
         if (!tested.empty())
