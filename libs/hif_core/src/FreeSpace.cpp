@@ -988,9 +988,11 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             }
             return false;
         };
-        if (!at_max &&
-            (emptyBefore(self_pos, earlier) || emptyBefore(judges.size() - self_pos, later)) &&
-            facesTheBeams())
+        // facesTheBeams() first: it reads a few cells of the point's own image, once per point,
+        // where the walks read every judge out to the first that sees the place empty, all of
+        // them for a point that is seen occupied throughout (most are).
+        if (!at_max && facesTheBeams() &&
+            (emptyBefore(self_pos, earlier) || emptyBefore(judges.size() - self_pos, later)))
         {
             judged = true;
             return Verdict::Gone;
