@@ -17,12 +17,14 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <thread>
 
 #include "app_checks.h"
 #include "app_runner.h"
@@ -300,6 +302,48 @@ TEST_F(SyntheticPipeline, ThreadsAndHeldScansGiveIdenticalResults)
     expectError(r, "makes an online map (online=true), but without --online");
     r = clean(rawlog, x, [](Options& o) { o.threads = 0; });
     expectError(r, "--threads 0 is not in [1, 1024]");
+}
+
+// The thread count: --threads, else the .ini's `threads`, else one per hardware thread of the
+// machine (a batch run uses the cores it has; the outputs are the same for any count).
+TEST_F(SyntheticPipeline, ThreadsComeFromTheCommandLineTheIniOrTheMachine)
+{
+    const std::string rawlog = root_ + "/scans.rawlog", out = root_ + "/threads";
+    const std::string ini = root_ + "/one_thread.ini";
+    {
+        std::ifstream in(HIF_SHARE_DIR "/config/kitti.ini");
+        std::stringstream ss;
+        ss << in.rdbuf();
+        std::string text = ss.str();
+        const std::string section = "[map_CHeightIntervalMap_00_insertOpts]\n";
+        const auto at = text.find(section);
+        ASSERT_NE(at, std::string::npos);
+        text.insert(at + section.size(), "threads=1\n");
+        std::ofstream(ini) << text;
+    }
+    auto threadsOf = [&](auto&& options)
+    {
+        const auto r = clean(rawlog, out, options);
+        EXPECT_EQ(r.code, 0) << r.output;
+        return readJson(out + "/summary.json")["threads"].get<long long>();
+    };
+    const long long machine = std::max(1u, std::thread::hardware_concurrency());
+    EXPECT_EQ(threadsOf([](Options& o) { o.overwrite = true; }), machine);
+    EXPECT_EQ(threadsOf(
+                  [&](Options& o)
+                  {
+                      o.overwrite = true;
+                      o.config = ini;
+                  }),
+              1);
+    EXPECT_EQ(threadsOf(
+                  [&](Options& o)
+                  {
+                      o.overwrite = true;
+                      o.config = ini;
+                      o.threads = 3;
+                  }),
+              3);
 }
 
 TEST_F(SyntheticPipeline, RefusesToOverwriteAndNamesBadInput)

@@ -42,7 +42,7 @@ struct CleanOptions
     bool online = false;                       ///< --online
     std::optional<long long> first_frame;      ///< --first-frame
     bool overwrite = false;                    ///< --overwrite
-    std::optional<long long> threads;          ///< --threads (default: the .ini's)
+    std::optional<long long> threads;          ///< --threads (default: .ini's, else all cores)
     bool hold_scans = false;                   ///< --hold-scans
     bool show_progress = true;                 ///< no --quiet
 };

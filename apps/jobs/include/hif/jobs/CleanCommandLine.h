@@ -188,8 +188,8 @@ struct CleanCommandLine
     TCLAP::ValueArg<long long> threads{
         "t",
         "threads",
-        "Threads for insertion and classification (overrides the .ini's threads; the result "
-        "is the same for any count)",
+        "Threads for insertion and classification (default: the .ini's threads, else one per "
+        "hardware thread of this machine; the result is the same for any count)",
         false,
         1,
         "N",
