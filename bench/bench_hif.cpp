@@ -331,6 +331,7 @@ void BM_ClassifyOfflineConfig(benchmark::State& state)
         g.insertScan(scans().view(i), scans().poses[i]);
         test.add(scans().view(i), scans().poses[i], g.imageLayout());
     }
+    g.setThreads(static_cast<std::size_t>(state.range(0)));
     std::vector<uint8_t> dyn;
     std::size_t k = 0, seen_through = 0;
     for (auto _ : state)
@@ -341,7 +342,11 @@ void BM_ClassifyOfflineConfig(benchmark::State& state)
     }
     state.counters["seen_through/scan"] = double(seen_through) / double(state.iterations());
 }
-BENCHMARK(BM_ClassifyOfflineConfig)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ClassifyOfflineConfig)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond);
 
 /** One scan added to a FreeSpaceTest (its fingerprint and range image built and stored),
  *  the test holding 21 scans (offline, 10 on each side). Argument image: 0, built from the

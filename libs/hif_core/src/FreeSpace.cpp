@@ -6,6 +6,7 @@
 #include "FreeSpace.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "GridAccess.h"
+#include "Parallel.h"
 #include "RangeImage.h"
 
 namespace hif::detail
@@ -717,6 +719,38 @@ std::size_t settledAt(std::size_t count, JudgeAt&& judgeAt, Settles&& settles)
     return 0;
 }
 
+namespace
+{
+/** Where a judge sees the point being judged (within the view limit). */
+enum class Seen : uint8_t
+{
+    Unknown,
+    Out,  ///< beyond the view limit or outside the judge's image
+    In
+};
+/** What the free-space test writes as it judges, one per thread: where each judge sees the
+ *  point being judged (found at most once per judge and point: the rules ask the same judges
+ *  again) and the entries a pillar's test asks about. */
+struct TestScratch
+{
+    std::vector<Seen> seen;
+    std::vector<ImageCell> cells;
+    std::vector<uint32_t> tested;
+};
+/** The scratch of the pillar loop's range this thread runs (markSeenThrough()); null on the
+ *  calling thread outside it. */
+thread_local TestScratch* t_scratch = nullptr;
+/** Makes `s` this thread's scratch for its lifetime. */
+struct ScratchOnThisThread
+{
+    explicit ScratchOnThisThread(TestScratch& s) : previous(t_scratch) { t_scratch = &s; }
+    ~ScratchOnThisThread() { t_scratch = previous; }
+    ScratchOnThisThread(const ScratchOnThisThread&) = delete;
+    ScratchOnThisThread& operator=(const ScratchOnThisThread&) = delete;
+    TestScratch* previous;
+};
+}  // namespace
+
 std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, const PointsView& pts,
                             const Eigen::Isometry3d& T, const FreeSpaceTest& test,
                             std::vector<uint8_t>& is_dynamic, std::size_t& judge_count)
@@ -761,16 +795,15 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     auto earlier = [&](std::size_t k) { return self_pos - 1 - k; };
     auto later = [&](std::size_t k) { return self_pos + k; };
 
-    // Where each judge sees the point being judged (within the view limit), found at most once
-    // per judge and point: the rules below ask the same judges again.
-    enum class Seen : uint8_t
+    // Each thread's own scratch (TestScratch), this one on the calling thread.
+    TestScratch main_scratch;
+    auto scratch = [&]() -> TestScratch&
     {
-        Unknown,
-        Out,  ///< beyond the view limit or outside the judge's image
-        In
+        TestScratch& s = t_scratch ? *t_scratch : main_scratch;
+        s.seen.resize(judges.size());
+        s.cells.resize(judges.size());
+        return s;
     };
-    std::vector<Seen> seen(judges.size());
-    std::vector<ImageCell> cells(judges.size());
     // A ringed sensor: the next return up or down a column of a scan's image is its next beam,
     // and each beam's elevation is one of its rings'.
     const bool rings = grid.sensorModel() && grid.sensorModel()->hasRings();
@@ -810,6 +843,9 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // there is not made.
     auto pointVerdict = [&](uint32_t i, bool sky, bool at_max)
     {
+        TestScratch& here = scratch();
+        std::vector<Seen>& seen = here.seen;
+        std::vector<ImageCell>& cells = here.cells;
         const Eigen::Vector3d p_w = worldOf(i);
         const Eigen::Vector3d from_self = p_w - t;
         const double self_dist = from_self.norm();
@@ -1240,7 +1276,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // one on a surface along the beams.
     auto ownEvidence = [&](uint32_t k)
     { return !alongBeamsAt(k) && runVerdict(k, ownBeamsVerdict) == Verdict::Gone; };
-    std::size_t marked = 0;
+    std::atomic<std::size_t> marked{0};  // the pillars' own tests run on the map's threads
     // Marks pillar p's points from half the clearance above its ground `low` up, and those
     // below with their own evidence.
     auto mark = [&](std::size_t p, int32_t low)
@@ -1255,7 +1291,6 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             ++marked;
         }
     };
-    std::vector<uint32_t> tested;
     std::vector<std::pair<int64_t, int64_t>> gone;  // pillars of a mover, (m, n)
     // Pillars with too little above the ground for an object, and whether the map found part
     // of one dynamic where beams had seen the place empty (ScanBuckets::seen_empty).
@@ -1357,6 +1392,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             if (!c || !facesBeams(ownJudge(), *c, margin, true)) return false;
         }
         if (!groundHidden(ownJudge(), worldOf(low), margin, object.min_extent, true)) return false;
+        std::vector<uint32_t>& tested = scratch().tested;
         tested.clear();
         for (uint32_t k = scan.offsets[p]; k < scan.offsets[p + 1]; ++k) tested.push_back(k);
         return reachesShare(
@@ -1364,72 +1400,107 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             [&](uint32_t k)
             { return runVerdict(k, [&](uint32_t i) { return ownBeamsVerdict(i, true); }); });
     };
+    // Each pillar's own test (an object clear of its ground, or a top seen by one ring) reads
+    // and marks its own points only, and writes what it found at its index: the pillars are
+    // split over the map's threads, each with its own scratch, and what they found is gathered
+    // in the pillars' order below, as one thread finds it. The scan's own image is made first
+    // (ownJudge()): the threads share it.
+    struct PillarFound
+    {
+        bool mover = false;
+        std::optional<Small> small;
+        std::optional<ObjectPillar> object;
+    };
+    std::vector<PillarFound> found_at(scan.pillarCount());
+    ThreadArena* const arena = GridAccess::arena(grid);
+    if (arena && scan.pillarCount() > 0) ownJudge();
+    constexpr std::size_t kPillarsAtOnce = 32;
+    forRanges(
+        arena, scan.pillarCount(), kPillarsAtOnce,
+        [&](std::size_t p0, std::size_t p1)
+        {
+            TestScratch range_scratch;
+            const ScratchOnThisThread on_this_thread(range_scratch);
+            std::vector<uint32_t>& tested = range_scratch.tested;
+            for (std::size_t p = p0; p < p1; ++p)
+            {
+                PillarFound& out = found_at[p];
+                bool any_dynamic = false;
+                for (uint32_t k = scan.offsets[p]; k < scan.offsets[p + 1] && !any_dynamic; ++k)
+                    any_dynamic = is_dynamic[scan.index[k]] != 0;
+                bool hidden = any_dynamic && lowestHidden(p);  // kept for the small ones (below)
+                auto found =
+                    object.entries(scan, p, pts, is_dynamic, tested, object.clearance, hidden);
+                // Too little clear of the lowest return for an object, but enough with it where it
+                // stands on a face above the ground: a car 24 m away met by two rings of a 16-beam
+                // LiDAR, 0.4 and 1.2 m above the road. Asked only where it can make the object.
+                // (groundHidden() asked here too removed static points, vegetation and fences, and
+                // few moving ones: 03 at 16 rings SA -0.06.)
+                if (!found.object && !any_dynamic && !tested.empty() && found.from_lowest &&
+                    lowestOnFace(p))
+                {
+                    hidden = true;
+                    found =
+                        object.entries(scan, p, pts, is_dynamic, tested, object.clearance, true);
+                }
+                // What shows above something standing in front of it, on a surface that faces the
+                // beams, is the top of what stands behind, however little of it shows: a walker's
+                // head and shoulders over a parked car, a car's roof over a barrier. Its lowest
+                // return is no ground (the scan could not see below it, groundHidden()) and faces
+                // the beams (facesBeams(): not foliage, not ground met at grazing incidence), so
+                // two entries make an object whatever height they span: ObjectTest::min_extent,
+                // there to keep out the texture and kerbs of ground in sight, is 0 for it. So is
+                // the height a floor the map holds must lie under the lowest return to be the
+                // ground the test measures from, and that return is then judged too.
+                if (!found.object && !any_dynamic && !tested.empty() && rings)
+                {
+                    const Eigen::Vector3d lowest = lowestOf(p);
+                    if (groundHidden(ownJudge(), lowest, margin, object.min_extent) &&
+                        facesBeams(ownJudge(), lowest, margin))
+                    {
+                        ObjectTest any_height = object;
+                        any_height.min_extent = 0.0;
+                        hidden = true;
+                        found = any_height.entries(scan, p, pts, is_dynamic, tested,
+                                                   object.clearance, true);
+                    }
+                }
+                bool mover = found.moving;
+                if (found.object)
+                {
+                    if (reachesShare(tested, prm.free_space_fraction, verdict))
+                    {
+                        if (!any_dynamic && (hidden || lowestHidden(p)))
+                            found.low = groundBelowLowest(p);
+                        mark(p, found.low);
+                        mover = true;
+                    }
+                }
+                else if (!any_dynamic && rings && topSeenByOneRingGone(p))
+                    mark(p, scan.cells[ObjectTest::lowestEntry(scan, p)] - below);
+                else
+                {
+                    bool seen_empty = false;
+                    for (uint32_t k = scan.offsets[p]; k < scan.offsets[p + 1] && !seen_empty; ++k)
+                        seen_empty = is_dynamic[scan.index[k]] != 0 && scan.seen_empty[k] != 0;
+                    out.small = Small{p, seen_empty,
+                                      any_dynamic ? std::optional<bool>(hidden) : std::nullopt};
+                }
+                out.mover = mover;
+                if (carry_on && (found.object || mover))
+                    out.object = ObjectPillar{p, found.low, mover};
+            }
+        });
     for (std::size_t p = 0; p < scan.pillarCount(); ++p)
     {
-        bool any_dynamic = false;
-        for (uint32_t k = scan.offsets[p]; k < scan.offsets[p + 1] && !any_dynamic; ++k)
-            any_dynamic = is_dynamic[scan.index[k]] != 0;
-        bool hidden = any_dynamic && lowestHidden(p);  // kept for the small ones (below)
-        auto found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance, hidden);
-        // Too little clear of the lowest return for an object, but enough with it where it
-        // stands on a face above the ground: a car 24 m away met by two rings of a 16-beam
-        // LiDAR, 0.4 and 1.2 m above the road. Asked only where it can make the object.
-        // (groundHidden() asked here too removed static points, vegetation and fences, and few
-        // moving ones: 03 at 16 rings SA -0.06.)
-        if (!found.object && !any_dynamic && !tested.empty() && found.from_lowest &&
-            lowestOnFace(p))
-        {
-            hidden = true;
-            found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance, true);
-        }
-        // What shows above something standing in front of it, on a surface that faces the
-        // beams, is the top of what stands behind, however little of it shows: a walker's head
-        // and shoulders over a parked car, a car's roof over a barrier. Its lowest return is
-        // no ground (the scan could not see below it, groundHidden()) and faces the beams
-        // (facesBeams(): not foliage, not ground met at grazing incidence), so two entries make
-        // an object whatever height they span: ObjectTest::min_extent, there to keep out the
-        // texture and kerbs of ground in sight, is 0 for it. So is the height a floor the map
-        // holds must lie under the lowest return to be the ground the test measures from, and
-        // that return is then judged too.
-        if (!found.object && !any_dynamic && !tested.empty() && rings)
-        {
-            const Eigen::Vector3d lowest = lowestOf(p);
-            if (groundHidden(ownJudge(), lowest, margin, object.min_extent) &&
-                facesBeams(ownJudge(), lowest, margin))
-            {
-                ObjectTest any_height = object;
-                any_height.min_extent = 0.0;
-                hidden = true;
-                found =
-                    any_height.entries(scan, p, pts, is_dynamic, tested, object.clearance, true);
-            }
-        }
-        bool mover = found.moving;
-        if (found.object)
-        {
-            if (reachesShare(tested, prm.free_space_fraction, verdict))
-            {
-                if (!any_dynamic && (hidden || lowestHidden(p))) found.low = groundBelowLowest(p);
-                mark(p, found.low);
-                mover = true;
-            }
-        }
-        else if (!any_dynamic && rings && topSeenByOneRingGone(p))
-            mark(p, scan.cells[ObjectTest::lowestEntry(scan, p)] - below);
-        else
-        {
-            bool seen_empty = false;
-            for (uint32_t k = scan.offsets[p]; k < scan.offsets[p + 1] && !seen_empty; ++k)
-                seen_empty = is_dynamic[scan.index[k]] != 0 && scan.seen_empty[k] != 0;
-            small.push_back(
-                {p, seen_empty, any_dynamic ? std::optional<bool>(hidden) : std::nullopt});
-        }
-        if (mover)
+        const PillarFound& f = found_at[p];
+        if (f.small) small.push_back(*f.small);
+        if (f.mover)
         {
             const PillarIndex idx = unpackKey(scan.keys[p]);
             gone.emplace_back(idx.m, idx.n);
         }
-        if (carry_on && (found.object || mover)) objects.push_back({p, found.low, mover});
+        if (f.object) objects.push_back(*f.object);
     }
     // A mover's surface carried on across pillars. Pillars with an object are joined where the
     // scan's own image shows one surface across their boundary (oneSurface(), within the
@@ -1652,6 +1723,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         // seen through either, and stays. Judged as from the ground up: an entry on a surface
         // along the beams (terrain on a slope) is no evidence. (Offline, with p_empty_init under
         // 0.5, what was seen once is dynamic by the map already.)
+        std::vector<uint32_t>& tested = scratch().tested;
         const auto first = scan.seen_once.begin() + scan.offsets[p];
         if (std::none_of(first, scan.seen_once.begin() + scan.offsets[p + 1],
                          [](uint8_t once) { return once != 0; }))
@@ -1673,6 +1745,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     auto testWithMover = [&](const Small& sm)
     {
         const std::size_t p = sm.p;
+        std::vector<uint32_t>& tested = scratch().tested;
         const bool hidden = hiddenBelow(sm);
         auto found = object.entries(scan, p, pts, is_dynamic, tested, object.clearance, hidden);
         bool share = false;
