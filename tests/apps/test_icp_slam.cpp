@@ -13,11 +13,13 @@
 #include <mrpt/opengl/COpenGLScene.h>
 #include <mrpt/serialization/CArchive.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
+#include <thread>
 
 #include "app_runner.h"
 #include "hif/io/KittiSequence.h"
@@ -71,6 +73,12 @@ TEST(HifIcpSlam, TracksKitti08AndKeepsMoversOutOfItsMap)
         const nlohmann::json s = readJson(out + "/summary.json");
         (hif ? with : without) = s;
         EXPECT_EQ(s["scans"], kScans);
+        // The map's threads: the shipped config sets none, so one per hardware thread.
+        if (hif)
+            EXPECT_EQ(s["threads"].get<long long>(),
+                      std::max(1u, std::thread::hardware_concurrency()));
+        else
+            EXPECT_TRUE(s["threads"].is_null());
         // Timings with three decimals, HIF's too ("HIF 6.286372" once).
         EXPECT_TRUE(std::regex_search(
             r.output, std::regex(hif ? R"(\(ICP [0-9]+\.[0-9]{3}, HIF [0-9]+\.[0-9]{3}\), p90)"

@@ -6,9 +6,11 @@
  */
 #include "hif/apps/Config.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 namespace fs = std::filesystem;
@@ -71,6 +73,17 @@ void checkMapCounts(const mrpt::config::CConfigFileBase& config, const std::stri
                                      std::to_string(kMaxMapsPerClass) + "] (how many maps of " +
                                      "that class to create)");
     }
+}
+
+std::optional<uint64_t> mapThreads(const mrpt::config::CConfigFileBase& config,
+                                   const std::string& section, std::optional<long long> given)
+{
+    if (given) return static_cast<uint64_t>(*given);
+    // MRPT reads a map's insertion options from the section named after the map list, the
+    // class and the map's number among those of its class.
+    if (config.keyExists(section + "_CHeightIntervalMap_00_insertOpts", "threads"))
+        return std::nullopt;
+    return std::max<uint64_t>(1, std::thread::hardware_concurrency());
 }
 
 }  // namespace hif::apps

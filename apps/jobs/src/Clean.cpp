@@ -10,13 +10,11 @@
 #include <mrpt/maps/CMultiMetricMap.h>
 #include <mrpt/obs/CObservationPointCloud.h>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <future>
 #include <sstream>
-#include <thread>
 #include <utility>
 
 #include "clean/Outputs.h"
@@ -156,16 +154,10 @@ void setUp(const CleanOptions& o, Run& run)
                         : "online map (online=true), but without --online every scan is "
                           "inserted before any is classified: add --online, or use an offline "
                           "config (share/hif/config/kitti.ini, the default)"));
-    // --threads, else the .ini's threads, else one per hardware thread of this machine (the
-    // outputs are the same for any count). The map's insertion options are read from the
-    // section MRPT names after the first map of its class.
-    const bool ini_threads =
-        cfg.keyExists(run.section + "_CHeightIntervalMap_00_insertOpts", "threads");
-    if (o.threads || !ini_threads)
+    // --threads, else the .ini's threads, else one per hardware thread of this machine.
+    if (const auto threads = hif::apps::mapThreads(cfg, run.section, o.threads))
     {
-        run.hif_map->insertionOptions.threads =
-            o.threads ? static_cast<uint64_t>(*o.threads)
-                      : std::max<uint64_t>(1, std::thread::hardware_concurrency());
+        run.hif_map->insertionOptions.threads = *threads;
         run.hif_map->applyOptions();
     }
 }

@@ -137,6 +137,12 @@ IcpSlamResult IcpSlam::run(std::ostream& log) const
                 "config '" + cfg_file +
                 "': its CHeightIntervalMap is offline (online=false), but SLAM classifies each "
                 "scan as it comes: set online=true (as share/hif/config/icp-slam-3d.ini does)");
+        // The .ini's threads, else one per hardware thread of this machine.
+        if (const auto threads = hif::apps::mapThreads(cfg, "map", std::nullopt))
+        {
+            hif_map->insertionOptions.threads = *threads;
+            hif_map->applyOptions();
+        }
     }
     auto source = hif::apps::openScanSource(input, {}, /*poses_required=*/false);
     log << IcpSlam::kTag << " input  : " << input << "\n"
@@ -275,6 +281,8 @@ IcpSlamResult IcpSlam::run(std::ostream& log) const
     j["input"] = input;
     j["config"] = cfg_file;
     j["hif"] = use_hif;
+    j["threads"] =
+        hif_map ? nlohmann::json(hif_map->insertionOptions.threads) : nlohmann::json(nullptr);
     j["scans"] = poses.size();
     j["points_in"] = points_in;
     j["points_removed_by_hif"] = points_removed;

@@ -8,6 +8,8 @@
 
 #include <mrpt/config/CConfigFileBase.h>
 
+#include <cstdint>
+#include <optional>
 #include <string>
 
 namespace hif::apps
@@ -29,5 +31,13 @@ constexpr long kMaxMapsPerClass = 16;
  *  std::runtime_error naming `file`, the section and the key otherwise. */
 void checkMapCounts(const mrpt::config::CConfigFileBase& config, const std::string& section,
                     const std::string& file);
+
+/** The thread count an app gives the first CHeightIntervalMap of map list `section`: `given`
+ *  (a command-line option) where set, else none where its insertion options in `config` set
+ *  `threads` (that count stands), else one per hardware thread of this machine: a batch run
+ *  uses the cores it has, and the map is the same for any count. */
+[[nodiscard]] std::optional<uint64_t> mapThreads(const mrpt::config::CConfigFileBase& config,
+                                                 const std::string& section,
+                                                 std::optional<long long> given);
 
 }  // namespace hif::apps
