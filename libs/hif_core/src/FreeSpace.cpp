@@ -315,17 +315,18 @@ int stepColumns(int cols, int c)
 
 /** Whether the world point in `cell` of scan `own`'s image (the scan it was seen in) lies on
  *  a surface that faces the beams of `own`: in `own`'s image, the nearest returns beside it
- *  in its row (within a horizontal step of the sensor, stepColumns()) and above and below it in its
- * column (within one and a half beam spacings) that lie on its surface (within the margin of it; in
- * the row and in the column, at least one does) lie within the margin's share for range noise and
- * pose error (half its base) of its range. A beam a fraction of a cell off the point's direction
- *  then returns where one toward the point would: a walker, a car's back. On a surface met
- *  at grazing incidence (a facade along the street, a windscreen) or in foliage,
- *  neighbouring beams return farther apart; returns beyond the margin are another surface
- *  (the point lies on an edge). The ground seen by one ring returns its row at one range, but
- *  the next ring lands beyond the margin: no surface in the column. With `row_only`, a
- *  surface seen by one ring (nothing on it up or down the column) faces the beams when its row
- *  does so (a return up or down the column that lies on it still must). */
+ *  in its row (within a horizontal step of the sensor, stepColumns()) and above and below it
+ *  in its column (within one and a half beam spacings) that lie on its surface (within the
+ *  margin of it; in the row and in the column, at least one does) lie within the margin's
+ *  share for range noise and pose error (half its base) of its range. A beam a fraction of a
+ *  cell off the point's direction then returns where one toward the point would: a walker, a
+ *  car's back. On a surface met at grazing incidence (a facade along the street, a
+ *  windscreen) or in foliage, neighbouring beams return farther apart; returns beyond the
+ *  margin are another surface (the point lies on an edge). The ground seen by one ring
+ *  returns its row at one range, but the next ring lands beyond the margin: no surface in the
+ *  column. With `row_only`, a surface seen by one ring (nothing on it up or down the column)
+ *  faces the beams when its row does so (a return up or down the column that lies on it still
+ *  must). */
 bool facesBeams(const Judge& own, const ImageCell& cell, const RangeMargin& margin,
                 bool row_only = false)
 {
@@ -733,6 +734,7 @@ enum class Seen : uint8_t
  *  again) and the entries a pillar's test asks about. */
 struct TestScratch
 {
+    explicit TestScratch(std::size_t judges) : seen(judges), cells(judges) {}
     std::vector<Seen> seen;
     std::vector<ImageCell> cells;
     std::vector<uint32_t> tested;
@@ -796,14 +798,8 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     auto later = [&](std::size_t k) { return self_pos + k; };
 
     // Each thread's own scratch (TestScratch), this one on the calling thread.
-    TestScratch main_scratch;
-    auto scratch = [&]() -> TestScratch&
-    {
-        TestScratch& s = t_scratch ? *t_scratch : main_scratch;
-        s.seen.resize(judges.size());
-        s.cells.resize(judges.size());
-        return s;
-    };
+    TestScratch main_scratch(judges.size());
+    auto scratch = [&]() -> TestScratch& { return t_scratch ? *t_scratch : main_scratch; };
     // A ringed sensor: the next return up or down a column of a scan's image is its next beam,
     // and each beam's elevation is one of its rings'.
     const bool rings = grid.sensorModel() && grid.sensorModel()->hasRings();
@@ -1419,7 +1415,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         arena, scan.pillarCount(), kPillarsAtOnce,
         [&](std::size_t p0, std::size_t p1)
         {
-            TestScratch range_scratch;
+            TestScratch range_scratch(judges.size());
             const ScratchOnThisThread on_this_thread(range_scratch);
             std::vector<uint32_t>& tested = range_scratch.tested;
             for (std::size_t p = p0; p < p1; ++p)
