@@ -274,6 +274,23 @@ struct WithAndWithout
 {
     Removed without, with;
 };
+/** The static scene as the map alone has it: the test removes exactly the ground and wall
+ *  points the map does. */
+void expectGroundAndWallAsTheMapHasThem(const Removed& with, const Removed& without)
+{
+    for (const What w : {kGround, kWall})
+        EXPECT_EQ(with.removed[w], without.removed[w]) << "kind " << int(w);
+}
+/** The mover of kind `w` (more than `min_points` points) removed `min_pct` % or more with the
+ *  test, 5 % at most by the map alone; the static scene as the map has it. */
+void expectTheMoverGoes(const Removed& with, const Removed& without, What w, std::size_t min_points,
+                        double min_pct)
+{
+    EXPECT_GT(with.n[w], min_points);
+    EXPECT_GE(with.pct(w), min_pct);
+    EXPECT_LE(without.pct(w), 5.0);
+    expectGroundAndWallAsTheMapHasThem(with, without);
+}
 WithAndWithout withAndWithoutTheTest(const std::vector<Scan>& scans)
 {
     return {offline(scans, freeSpaceParams(), false), offline(scans, freeSpaceParams(), true)};
@@ -423,7 +440,7 @@ TEST(FreeSpaceTest, AWalkersLowestRingIsTestedWhereTheMapHoldsTheFloorBelowIt)
     EXPECT_GT(with.n[kPerson], 20u);
     EXPECT_LT(without.pct(kPerson), 50.0);
     EXPECT_GE(with.pct(kPerson), 90.0);
-    for (const What w : {kGround, kWall}) EXPECT_EQ(with.removed[w], without.removed[w]);
+    expectGroundAndWallAsTheMapHasThem(with, without);
 }
 
 // The bicycle's low part reaches 0.6 m beyond its rider on both sides, into pillars where it
@@ -579,12 +596,8 @@ TEST(FreeSpaceTest, OnlineAMoverTooSmallForAnObjectIsShownWhereItIsNew)
         onlineWithAndWithout(crossingBoxScans(-6.4, 0.8), onlineParams(), nullptr, model);
     // Measured: 81 % of the box's 208 points removed (none in the first scan, which has no past;
     // none before new pillars were tested), the map alone none; no ground or wall point.
-    EXPECT_GT(with.n[kPerson], 150u);
-    EXPECT_GE(with.pct(kPerson), 70.0);
-    EXPECT_LE(without.pct(kPerson), 5.0);
     EXPECT_GT(with.n[kGround], 10000u);
-    for (const What w : {kGround, kWall})
-        EXPECT_EQ(with.removed[w], without.removed[w]) << "kind " << int(w);
+    expectTheMoverGoes(with, without, kPerson, 150u, 70.0);
 }
 
 // Online, as above (rings 1.7 degrees apart, the sensor standing), a car 2 m long crossing 22.2
@@ -600,11 +613,7 @@ TEST(FreeSpaceTest, OnlineWhatIsNextToAMoverShownNewGoesWithIt)
     // Measured: 82.4 % of the car's 512 points removed (77.3 % with only the pillars next to a
     // mover shown otherwise tested with it; none in the first scan, which has no past), the
     // map alone none; no ground or wall point.
-    EXPECT_GT(with.n[kPerson], 400u);
-    EXPECT_GE(with.pct(kPerson), 80.0);
-    EXPECT_LE(without.pct(kPerson), 5.0);
-    for (const What w : {kGround, kWall})
-        EXPECT_EQ(with.removed[w], without.removed[w]) << "kind " << int(w);
+    expectTheMoverGoes(with, without, kPerson, 400u, 80.0);
 }
 
 // Online, rings 0.4 degrees apart, the sensor standing at the foot of a road that climbs 9 %
@@ -667,12 +676,8 @@ TEST(FreeSpaceTest, OnlineASkyBehindWhatIsNewIsSeenThrough)
     // Measured: 60.6 % of the trailer's 545 points removed (49.9 % with the beams into the sky
     // no evidence: the scans in which it stands before the gap; none in the first scan, which
     // has no past), the map alone none; no ground or wall point.
-    EXPECT_GT(with.n[kPerson], 400u);
-    EXPECT_GE(with.pct(kPerson), 57.0);
-    EXPECT_LE(without.pct(kPerson), 5.0);
     EXPECT_GT(with.n[kWall], 10000u);
-    for (const What w : {kGround, kWall})
-        EXPECT_EQ(with.removed[w], without.removed[w]) << "kind " << int(w);
+    expectTheMoverGoes(with, without, kPerson, 400u, 57.0);
 }
 
 // Online, the sensor standing (rings 0.4 degrees apart): two cyclists ride one behind the other
@@ -713,12 +718,8 @@ TEST(FreeSpaceTest, OnlineAPlaceSeenEmptyJustBeforeWhatStandsThereShowsItCame)
     // Measured: the second cyclist 89.9 % of 2,021 points removed (76.4 % without the rule, or
     // with facesBeams() reading two columns: none of its eighth scan), the first 85.2 %; the
     // map alone none of the second; no ground or wall point.
-    EXPECT_GT(with.n[kRider], 1500u);
-    EXPECT_GE(with.pct(kRider), 85.0);
     EXPECT_GE(with.pct(kPerson), 80.0);
-    EXPECT_LE(without.pct(kRider), 5.0);
-    for (const What w : {kGround, kWall})
-        EXPECT_EQ(with.removed[w], without.removed[w]) << "kind " << int(w);
+    expectTheMoverGoes(with, without, kRider, 1500u, 85.0);
 }
 
 TEST(FreeSpaceTest, OffByDefaultAndOnlyScansWithinTheWindowCount)
@@ -883,7 +884,7 @@ TEST(FreeSpaceTest, APersonWalkingAlongTheLineOfSightIsShownByASteadyDrift)
         EXPECT_GT(with.n[kPerson], 1000u);
         EXPECT_LT(without.pct(kPerson), 20.0);
         EXPECT_GE(with.pct(kPerson), 70.0);
-        for (const What w : {kGround, kWall}) EXPECT_EQ(with.removed[w], without.removed[w]);
+        expectGroundAndWallAsTheMapHasThem(with, without);
     }
 }
 
