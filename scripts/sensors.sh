@@ -26,7 +26,7 @@ BIN=${HIF_BUILD_DIR:-build}/apps
 source scripts/scene-switches.sh
 scene_switches HIF_SENSORS sensors
 ROOT=${HIF_SENSORS_DIR:-build/sensors$SUFFIX}
-SENSORS=${HIF_SENSORS:-hdl-64e hdl-32e vlp-16 os1-128 mid-70}
+SENSORS=${HIF_SENSORS:-hdl-64e hdl-32e vlp-16 os1-128 vlp-32c mid-70}
 SCENES=${HIF_SENSORS_SCENES:-street walkers cyclists traffic}
 SCANS=${HIF_SENSORS_SCANS:-10}
 SEEDS=${HIF_SENSORS_SEEDS:-1}

@@ -1008,17 +1008,25 @@ namespace
 {
 constexpr double kSensorZ = 1.7410;  // 19.9 m * tan(5 degrees)
 
-/** One scan of a 16-ring LiDAR (rings every 2 degrees from -15 to +15, 0.2 degrees apart in
- *  azimuth, over azimuths -10 to +10 degrees) kSensorZ above flat ground (ring -5 lands at
- *  19.9 m): `reach(a, t)` is the horizontal distance at which the beam of azimuth step `a` (of
- *  0.2 degrees) and elevation tangent `t` returns, infinity for none. Is each of `probes` static
- *  once the scan is inserted (offline p_empty_init) with ground_max_slope_deg `slope`? */
-template <class Reach>
-std::vector<bool> staticAfterOneRingScan(double slope, const Reach& reach,
-                                         const std::vector<Eigen::Vector3d>& probes)
+/** Rings every 2 degrees from -15 to +15 (a 16-ring LiDAR). */
+std::vector<double> sixteenRings()
 {
     std::vector<double> el;
     for (int e = -15; e <= 15; e += 2) el.push_back(e);
+    return el;
+}
+
+/** One scan of a LiDAR with rings at elevations `el` (degrees; by default sixteenRings()), 0.2
+ *  degrees apart in azimuth, over azimuths -10 to +10 degrees, kSensorZ above flat ground (ring
+ *  -5 lands at 19.9 m): `reach(a, t)` is the horizontal distance at which the beam of azimuth
+ *  step `a` (of 0.2 degrees) and elevation tangent `t` returns, infinity for none. Is each of
+ *  `probes` static once the scan is inserted (offline p_empty_init) with ground_max_slope_deg
+ *  `slope`? */
+template <class Reach>
+std::vector<bool> staticAfterOneRingScan(double slope, const Reach& reach,
+                                         const std::vector<Eigen::Vector3d>& probes,
+                                         const std::vector<double>& el = sixteenRings())
+{
     Params prm;
     prm.p_empty_init = 0.42;  // offline: a height seen once needs a second sighting
     prm.ground_max_slope_deg = slope;
@@ -1158,6 +1166,38 @@ TEST(GroundSeenOnce, AFloorThatRunsOnBothWaysIsKeptWhatStandsOnItIsNot)
     {
         EXPECT_FALSE(on[k]) << "probe " << k;
         EXPECT_FALSE(off[k]) << "probe " << k;
+    }
+}
+
+// A LiDAR whose beams crowd near the horizon (a VLP-32C: a third of a degree apart from +1.67
+// to -4 degrees, then 0.67, 0.82, 1.1, 1.6, 2.5, 4.3 and 9.4 degrees apart down to -25) sees
+// far ground with its dense beams, each ring once, and the run of returns down to its lowest
+// crosses the sparse beams below. Each of them is the next beam below the one above it, though
+// several median spacings away: the run goes on, and the ground is kept after one sighting.
+TEST(GroundSeenOnce, GroundIsKeptUnderBeamsThatCrowdNearTheHorizon)
+{
+    const std::vector<double> vlp32c{
+        15.0,   10.333, 7.0,    4.667,  3.333,  2.333,  1.667,  1.333,  1.0,     0.667, 0.333,
+        0.0,    -0.333, -0.667, -1.0,   -1.333, -1.667, -2.0,   -2.333, -2.667,  -3.0,  -3.333,
+        -3.667, -4.0,   -4.667, -5.333, -6.148, -7.254, -8.843, -11.31, -15.639, -25.0};
+    const auto rad = [](double deg) { return deg * M_PI / 180.0; };
+    const auto ground = [](int, double t)
+    { return t < 0 ? -kSensorZ / t : std::numeric_limits<double>::infinity(); };
+    const auto onGroundAt = [&](double el_deg)
+    {
+        const double d = kSensorZ / std::tan(rad(-el_deg));
+        return Eigen::Vector3d(d * std::cos(rad(3.0)), d * std::sin(rad(3.0)), -kSensorZ);
+    };
+    // Rings -2 (49.9 m), -3 (33.2 m) and -4.667 (21.3 m): each run down crosses the gaps of
+    // 0.82 degrees and more below -5.333.
+    const std::vector<Eigen::Vector3d> probes{onGroundAt(-2.0), onGroundAt(-3.0),
+                                              onGroundAt(-4.667)};
+    const std::vector<bool> on = staticAfterOneRingScan(5.0, ground, probes, vlp32c);
+    const std::vector<bool> off = staticAfterOneRingScan(0.0, ground, probes, vlp32c);
+    for (std::size_t k = 0; k < probes.size(); ++k)
+    {
+        EXPECT_TRUE(on[k]) << "probe " << k << ": ground seen once";
+        EXPECT_FALSE(off[k]) << "probe " << k << ": without the rule, a second sighting";
     }
 }
 

@@ -61,6 +61,35 @@ TEST(SensorModel, RecoversTheBeamsAndStepOfASpinningLidar)
     EXPECT_TRUE(m->contradiction(*m16));
 }
 
+// A VLP-32C's beams: a third of a degree apart near the horizon, up to 9 degrees apart at the
+// bottom of its view. Each is recovered; the median spacing is the dense one, and the gap
+// between two beams (PillarGrid::beamGapSlope(), the interval widths) is the local one.
+TEST(SensorModel, RecoversUnevenBeamsThatCrowdNearTheHorizon)
+{
+    const std::vector<double> beams{-25.0,  -15.639, -11.31, -8.843, -7.254, -6.148, -5.333, -4.667,
+                                    -4.0,   -3.667,  -3.333, -3.0,   -2.667, -2.333, -2.0,   -1.667,
+                                    -1.333, -1.0,    -0.667, -0.333, 0.0,    0.333,  0.667,  1.0,
+                                    1.333,  1.667,   2.333,  3.333,  4.667,  7.0,    10.333, 15.0};
+    Cloud c;
+    for (int col = 0; col < 1800; ++col)
+        for (double e : beams) c.add(e, col * 0.2, 20.0 + 10.0 * ((col * 7) % 13) / 13.0);
+    const auto m = SensorModel::estimate(c.view());
+    ASSERT_TRUE(m);
+    ASSERT_EQ(m->beam_elevations_deg.size(), beams.size()) << m->describe();
+    for (std::size_t b = 0; b < beams.size(); ++b)
+        EXPECT_NEAR(m->beam_elevations_deg[b], beams[b], 0.02);
+    EXPECT_NEAR(m->vertical_spacing_deg, 1.0 / 3.0, 0.01);
+    Params prm;
+    PillarGrid grid(GridGeometry(), prm);
+    grid.setSensorModel(*m);
+    const auto gap = [&](double el_deg)
+    { return grid.beamGapSlope(std::tan(el_deg * M_PI / 180.0)); };
+    const auto tan_gap = [](double a, double b)
+    { return std::tan(b * M_PI / 180.0) - std::tan(a * M_PI / 180.0); };
+    EXPECT_NEAR(gap(-20.0), tan_gap(-25.0, -15.639), 1e-3);
+    EXPECT_NEAR(gap(-2.5), tan_gap(-2.667, -2.333), 1e-3);
+}
+
 TEST(SensorModel, ARosetteHasNoRingsAndALimitedFieldOfView)
 {
     std::mt19937 rng(3);

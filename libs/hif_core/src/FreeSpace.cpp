@@ -38,13 +38,21 @@ struct Judge
     Eigen::Matrix3d Rt;
     const FreeSpaceTest::Image* image;  ///< centimetres
     const RangeImageLayout* layout;
+    /** Where the sensor's next beam up or down a column lies farther than one and a half
+     *  median spacings (nextBeamRowsTable(); null: nowhere), for nextInColumn(). */
+    const uint16_t* next_beam_rows;
     double baseline = 0.0;  ///< distance to the classified scan's sensor
 
-    /** Scan `s`, at position `pos` in FreeSpaceTest::scans(). */
-    static Judge of(const FreeSpaceTest::Scan& s, std::size_t pos)
+    /** Scan `s`, at position `pos` in FreeSpaceTest::scans(), of a sensor whose next beams
+     *  lie as `next_beam_rows` says. */
+    static Judge of(const FreeSpaceTest::Scan& s, std::size_t pos, const uint16_t* next_beam_rows)
     {
-        return {pos, s.sensor_to_world.translation(), s.sensor_to_world.linear().transpose(),
-                &s.image, &s.layout};
+        return {pos,
+                s.sensor_to_world.translation(),
+                s.sensor_to_world.linear().transpose(),
+                &s.image,
+                &s.layout,
+                next_beam_rows};
     }
 
     /** World point `p` in this scan's sensor frame. */
@@ -230,12 +238,13 @@ float columnReturn(const Judge& j, int r, int c)
 
 /** The next beam's return in column `col` of judge `j`'s image from `row`, up (`dir` 1) or down
  *  (-1): the first of the rows within one and a half beam spacings (three rows of half a
- *  spacing) whose columnReturn() holds one. Its row (-1: none) and its range (`range`, +inf for
- *  none). */
+ *  spacing; more where the sensor's beams lie farther apart, nextBeamRows()) whose
+ *  columnReturn() holds one. Its row (-1: none) and its range (`range`, +inf for none). */
 int nextInColumn(const Judge& j, int row, int col, int dir, float& range)
 {
     constexpr int kRows = 3;
-    for (int k = 1; k <= kRows; ++k)
+    const int rows = nextBeamRows(j.next_beam_rows, j.layout->rows, kRows, row, dir);
+    for (int k = 1; k <= rows; ++k)
     {
         const int r = row + dir * k;
         if (r < 0 || r >= j.layout->rows) break;
@@ -762,13 +771,24 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // The scan classified, if the test holds it: it is not its own evidence, and only the
     // scans within free_space_window of it count. Otherwise it is newer than all of them.
     const std::optional<std::size_t> self = test.find(pts, T);
+    // A ringed sensor: the next return up or down a column of a scan's image is its next beam,
+    // and each beam's elevation is one of its rings'.
+    const bool rings = grid.sensorModel() && grid.sensorModel()->hasRings();
+    const std::vector<double>& ring_tan = GridAccess::beamTangents(grid);
+    // The grid's table of where the next beam lies, for the scans whose images have its layout
+    // (a scan added before the sensor model was estimated again has another).
+    auto judgeOf = [&](const FreeSpaceTest::Scan& s, std::size_t pos)
+    {
+        return Judge::of(s, pos,
+                         s.layout == grid.imageLayout() ? GridAccess::nextBeamRows(grid) : nullptr);
+    };
     std::vector<Judge> judges;
     const auto& scans = test.scans();
     for (std::size_t k = 0; k < scans.size(); ++k)
     {
         if (self && (k == *self || (k < *self ? *self - k : k - *self) > prm.free_space_window))
             continue;
-        judges.push_back(Judge::of(scans[k], k));
+        judges.push_back(judgeOf(scans[k], k));
     }
     judge_count = judges.size();
     if (judges.empty()) return 0;
@@ -800,10 +820,6 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // Each thread's own scratch (TestScratch), this one on the calling thread.
     TestScratch main_scratch(judges.size());
     auto scratch = [&]() -> TestScratch& { return t_scratch ? *t_scratch : main_scratch; };
-    // A ringed sensor: the next return up or down a column of a scan's image is its next beam,
-    // and each beam's elevation is one of its rings'.
-    const bool rings = grid.sensorModel() && grid.sensorModel()->hasRings();
-    const std::vector<double>& ring_tan = GridAccess::beamTangents(grid);
 
     // The scan's own image (groundHidden(), alongBeams(), facesBeams()), built when the test
     // does not hold the scan.
@@ -818,7 +834,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
                 unheld.emplace(1);
                 unheld->add(pts, T, grid.imageLayout());
             }
-            own = self ? Judge::of(scans[*self], *self) : Judge::of(unheld->scans().front(), 0);
+            own = self ? judgeOf(scans[*self], *self) : judgeOf(unheld->scans().front(), 0);
         }
         return *own;
     };

@@ -133,6 +133,12 @@ struct GridAccess
     /** tan() of the sensor model's beam elevations, ascending (SensorModel::beamTangents(),
      *  kept with the model); empty without rings. */
     static const std::vector<double>& beamTangents(const PillarGrid& g) { return g.beam_tangents_; }
+    /** nextBeamRowsTable() of the grid's image layout and beams, kept with the model; null
+     *  without rings. */
+    static const uint16_t* nextBeamRows(const PillarGrid& g)
+    {
+        return g.beam_tangents_.size() < 2 ? nullptr : g.next_beam_rows_.data();
+    }
 };
 
 }  // namespace hif::detail

@@ -76,6 +76,7 @@ void PillarGrid::useSensorModel(std::optional<SensorModel> model)
     sensor_ = std::move(model);
     layout_ = RangeImageLayout::forSensor(sensor_);
     beam_tangents_ = sensor_ ? sensor_->beamTangents() : std::vector<double>{};
+    next_beam_rows_ = detail::nextBeamRowsTable(layout_, beam_tangents_);
 }
 
 double PillarGrid::pEmptyInit() const

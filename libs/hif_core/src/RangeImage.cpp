@@ -309,6 +309,34 @@ __attribute__((target("avx"))) uint64_t passedRowsAvx(const RangeImageLayout& l,
 #endif
 }  // namespace
 
+std::vector<uint16_t> nextBeamRowsTable(const RangeImageLayout& l,
+                                        const std::vector<double>& ring_tan)
+{
+    std::vector<uint16_t> table(2 * static_cast<std::size_t>(std::max(l.rows, 0)), 0);
+    const auto n = static_cast<std::ptrdiff_t>(ring_tan.size());
+    if (n < 2) return table;
+    for (int row = 0; row < l.rows; ++row)
+    {
+        const double t = l.tan_min + (row + 0.5) * l.tan_res;
+        // The beam nearest the row, and the next one each way.
+        auto i = static_cast<std::ptrdiff_t>(std::lower_bound(ring_tan.begin(), ring_tan.end(), t) -
+                                             ring_tan.begin());
+        if (i == n || (i > 0 && t - ring_tan[i - 1] < ring_tan[i] - t)) --i;
+        for (const int dir : {-1, 1})
+        {
+            const std::ptrdiff_t next = i + dir;
+            if (next < 0 || next >= n) continue;
+            // Beams at most one and a half median spacings (three rows) apart: the usual rows
+            // reach the next.
+            const double gap = std::abs(ring_tan[next] - ring_tan[i]);
+            if (gap <= 3.0 * l.tan_res) continue;
+            const double rows = std::min(std::ceil(1.5 * gap / l.tan_res), double(l.rows));
+            table[2 * static_cast<std::size_t>(row) + (dir > 0)] = static_cast<uint16_t>(rows);
+        }
+    }
+    return table;
+}
+
 uint64_t passedRows(const RangeImageLayout& l, const BeamReturn* column, int row_lo, int n,
                     double d, double margin)
 {

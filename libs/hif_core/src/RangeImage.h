@@ -150,6 +150,27 @@ inline bool passesBeyond(double r, double dist2, double margin)
 uint64_t passedRows(const RangeImageLayout& l, const BeamReturn* column, int row_lo, int n,
                     double d, double margin);
 
+/** Where the sensor's next beam up or down a column of an image laid out as `l` (rows of half
+ *  its median beam spacing, RangeImageLayout::forSensor()) lies farther than one and a half
+ *  median spacings, how many rows to look along to reach it: for each row, entry 2 * row (down)
+ *  and 2 * row + 1 (up), one and a half times the gap from the beam nearest the row to the next
+ *  one that way, in rows; 0 where that gap is no wider than one and a half median spacings (or
+ *  there is no next beam). `ring_tan`: the tangents of the beams' elevations, ascending (empty
+ *  without rings: every entry 0). A sensor whose beams crowd near the horizon (a VLP-32C's a
+ *  third of a degree apart there, up to 9 degrees at the bottom of its view) has its next beam
+ *  several median spacings away at the ends of its view. */
+std::vector<uint16_t> nextBeamRowsTable(const RangeImageLayout& l,
+                                        const std::vector<double>& ring_tan);
+
+/** Rows to look along from `row`, up (`dir` 1) or down (-1), for the sensor's next beam: `rows`
+ *  (about one and a half median spacings), or more where nextBeamRowsTable()'s `table` (null:
+ *  none) for an image of `image_rows` rows says the next beam lies farther. */
+inline int nextBeamRows(const uint16_t* table, int image_rows, int rows, int row, int dir)
+{
+    if (!table || row < 0 || row >= image_rows) return rows;
+    return std::max<int>(rows, table[2 * row + (dir > 0)]);
+}
+
 /** Column `c` of an image of `cols` columns, wrapped around the azimuth (one wrap without a
  *  division). */
 inline int wrapCol(int c, int cols)
@@ -527,6 +548,9 @@ struct BeamGate
     uint8_t generation = 0;
     /** For onGround(): the range of the scan's farthest return, metres (0: unknown). */
     float farthest_return = 0.0f;
+    /** For onGround(): where the sensor's next beam up or down a column lies farther than
+     *  bridge_tan (nextBeamRowsTable(), GridAccess::nextBeamRows(); null: nowhere). */
+    const uint16_t* next_beam_rows = nullptr;
 
 private:
     /** Where the pillar's axis lies in the image between two heights. */
@@ -783,13 +807,19 @@ private:
         const double s = ret.range() / std::sqrt((1.0 + t * t) * (x * x + y * y));
         return {s * x, s * y, s * std::sqrt(x * x + y * y) * t};
     }
+    /** Rows of the image within bridge_tan (one and a half median beam spacings). */
+    [[nodiscard]] int bridgeRows() const
+    {
+        return std::max(1, static_cast<int>(std::ceil(bridge_tan / layout->tan_res)));
+    }
     /** The next beam's return above (dir 1) or below (dir -1) `from`: the first within 1.5
-     *  vertical spacings (bridge_tan), in its column or a neighbouring one (a beam's returns
-     *  fill every other column). */
+     *  vertical spacings (bridge_tan; or of the gap to the sensor's next beam where its beams
+     *  lie farther apart, nextBeamRows()), in its column or a neighbouring one (a beam's
+     *  returns fill every other column). */
     [[nodiscard]] Found nextReturn(const Found& from, int dir) const
     {
         const RangeImageLayout& l = *layout;
-        const int rows = std::max(1, static_cast<int>(std::ceil(bridge_tan / l.tan_res)));
+        const int rows = nextBeamRows(next_beam_rows, l.rows, bridgeRows(), from.row, dir);
         const int last = std::clamp(from.row + dir * rows, 0, l.rows - 1);
         for (int r = from.row + dir; dir > 0 ? r <= last : r >= last; r += dir)
             for (const int dc : {0, -1, 1})
@@ -803,7 +833,7 @@ private:
      *  beam that returned nothing within the run), rather than `from` being the lowest. */
     [[nodiscard]] bool gapBelow(const Found& from) const
     {
-        const int rows = std::max(1, static_cast<int>(std::ceil(bridge_tan / layout->tan_res)));
+        const int rows = nextBeamRows(next_beam_rows, layout->rows, bridgeRows(), from.row, -1);
         for (int r = std::min(from.row - rows - 1, layout->rows - 1); r >= 0; --r)
             if (cellAt(r, from.col).range_cm != BeamReturn::kNone) return true;
         return false;

@@ -71,6 +71,7 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
         gate.runs = ws.ground_runs.get();
         gate.generation = ws.ground_generation;
         gate.farthest_return = ws.farthest_return;
+        gate.next_beam_rows = GridAccess::nextBeamRows(grid);
         gate.edge_spans = scan.edgeSpansOf(p, gate.edge_count);
         gate.surfaces_into = surfaces_into;
         return gate;

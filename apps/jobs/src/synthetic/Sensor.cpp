@@ -5,7 +5,9 @@
  */
 #include "Sensor.h"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <stdexcept>
 
 namespace synth
@@ -33,6 +35,21 @@ Sensor spinning(const char* name, const char* description, int beams, double top
     return s;
 }
 
+/** A spinning sensor whose beams lie at the elevations `table` (degrees, any order),
+ *  `columns` a turn. */
+Sensor spinningAt(const char* name, const char* description, std::vector<double> table, int columns,
+                  double max_range)
+{
+    Sensor s;
+    s.name = name;
+    s.description = description;
+    std::sort(table.begin(), table.end(), std::greater<>());
+    s.elevations_deg = std::move(table);
+    s.columns = columns;
+    s.max_range = max_range;
+    return s;
+}
+
 std::vector<Sensor> makeSensors()
 {
     std::vector<Sensor> s{
@@ -43,7 +60,17 @@ std::vector<Sensor> makeSensors()
         spinning("vlp-16", "16 beams, +15 to -15 degrees (2 apart), 1800 columns, 100 m", 16, 15.0,
                  -15.0, 1800, 100.0),
         spinning("os1-128", "128 beams, +22.5 to -22.5 degrees (0.35 apart), 1024 columns, 120 m",
-                 128, 22.5, -22.5, 1024, 120.0)};
+                 128, 22.5, -22.5, 1024, 120.0),
+        // The VLP-32C's beams as its manual lists them: a third of a degree apart around the
+        // horizon, up to 9 degrees apart at the bottom and top of its view.
+        spinningAt("vlp-32c",
+                   "32 beams, +15 to -25 degrees, unevenly: 0.33 apart from +1.67 to -4, up to 9 "
+                   "apart at the ends (Velodyne VLP-32C), 1800 columns, 200 m",
+                   {-25.0,  -1.0,  -1.667, -15.639, -11.31, 0.0,   -0.667, -8.843,
+                    -7.254, 0.333, -0.333, -6.148,  -5.333, 1.333, 0.667,  -4.0,
+                    -4.667, 1.667, 1.0,    -3.667,  -3.333, 3.333, 2.333,  -2.667,
+                    -3.0,   7.0,   4.667,  -2.333,  -2.0,   15.0,  10.333, -1.333},
+                   1800, 200.0)};
     Sensor livox;
     livox.name = "mid-70";
     livox.description =

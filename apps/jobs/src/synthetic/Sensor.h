@@ -2,8 +2,9 @@
 /**
  * @file   Sensor.h
  * @brief  The LiDARs hif-synthetic-kitti can simulate: spinning sensors with a fixed set of beams
- *         (Velodyne HDL-64E, HDL-32E, VLP-16, Ouster OS1-128) and a non-repetitive rosette with a
- *         limited field of view (Livox Mid-70 style).
+ *         (Velodyne HDL-64E, HDL-32E, VLP-16, Ouster OS1-128, evenly spaced; a Velodyne VLP-32C,
+ *         crowded near the horizon) and a non-repetitive rosette with a limited field of view
+ *         (Livox Mid-70 style).
  */
 #pragma once
 
@@ -37,7 +38,7 @@ struct Sensor
 /** The sensor called `name` (see sensorNames()); throws std::runtime_error naming the known
  *  ones otherwise. */
 [[nodiscard]] const Sensor& sensorNamed(const std::string& name);
-/** "hdl-64e, hdl-32e, vlp-16, os1-128, mid-70". */
+/** "hdl-64e, hdl-32e, vlp-16, os1-128, vlp-32c, mid-70". */
 [[nodiscard]] std::string sensorNames();
 
 }  // namespace synth

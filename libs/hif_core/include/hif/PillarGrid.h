@@ -224,6 +224,9 @@ private:
     StateHolder state_;
     std::optional<SensorModel> sensor_;
     std::vector<double> beam_tangents_;  ///< sensor_->beamTangents()
+    /** Where the sensor's next beam lies farther than 1.5 median spacings, per row of layout_
+     *  (detail::nextBeamRowsTable()). */
+    std::vector<uint16_t> next_beam_rows_;
     RangeImageLayout layout_ = RangeImageLayout::forSensor(std::nullopt);
     std::size_t scans_since_check_ = 0;  ///< a check is due when it reaches kSensorCheckInterval
     std::size_t settle_scans_left_ = 0;  ///< kSensorSettleScans after an estimate, counted down

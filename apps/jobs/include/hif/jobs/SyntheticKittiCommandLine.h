@@ -62,7 +62,8 @@ struct SyntheticKittiCommandLine
     TCLAP::ValueArg<std::string> sensor{"",
                                         "sensor",
                                         "The LiDAR: hdl-64e (default, KITTI's), hdl-32e, vlp-16, "
-                                        "os1-128 or mid-70 (a Livox-style rosette, 70 degrees "
+                                        "os1-128, vlp-32c (uneven beams, crowded near the "
+                                        "horizon) or mid-70 (a Livox-style rosette, 70 degrees "
                                         "ahead)",
                                         false,
                                         "hdl-64e",
