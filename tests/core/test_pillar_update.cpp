@@ -65,10 +65,17 @@ TEST(BayesFilter, Eq5HandNumbers)
 
 namespace
 {
+/** A gap and a padding, in cells, for spansFromCells(). */
+struct Widths
+{
+    int32_t gap, pad;
+};
+
 std::vector<Span> spansOf(const std::vector<int32_t>& cells, int32_t gap, int32_t pad)
 {
     std::vector<Span> s(cells.size());
-    s.resize(spansFromCells(cells.data(), cells.size(), gap, pad, s.data()));
+    const auto widths = [&](double) { return Widths{gap, pad}; };
+    s.resize(spansFromCells(cells.data(), cells.size(), widths, gap, s.data()));
     return s;
 }
 }  // namespace
@@ -87,6 +94,26 @@ TEST(SpansFromCells, MergesByGapAndPads)
     const std::vector<int32_t> dup = {3, 3, 3};
     EXPECT_EQ(spansOf(dup, 0, 0), (std::vector<Span>{{3, 4}}));
     EXPECT_TRUE(spansOf({}, 0, 0).empty());
+}
+
+// Widths by height: a sensor whose beams lie farther apart higher up (a VLP-32C) samples the
+// top of a facade more sparsely than the ground in the same pillar. Heights from cell 10 up
+// take a gap of 4 and a padding of 2, those below none: the upper cells 3 apart share a span,
+// padded by the upper widths; the lower cells 2 apart do not; a span that starts below and
+// ends above is padded by each end's own.
+TEST(SpansFromCells, EachHeightTakesItsOwnWidths)
+{
+    const auto widths = [](double h) { return h >= 10.0 ? Widths{4, 2} : Widths{0, 0}; };
+    auto spans = [&](const std::vector<int32_t>& cells)
+    {
+        std::vector<Span> s(cells.size());
+        s.resize(spansFromCells(cells.data(), cells.size(), widths, 0, s.data()));
+        return s;
+    };
+    EXPECT_EQ(spans({0, 2, 12, 15, 18}), (std::vector<Span>{{0, 1}, {2, 3}, {10, 21}}));
+    // 7 and 11: their middle (9) takes no gap; 9 and 11 (middle 10) share the upper one.
+    EXPECT_EQ(spans({7, 11}), (std::vector<Span>{{7, 8}, {9, 14}}));
+    EXPECT_EQ(spans({9, 11}), (std::vector<Span>{{9, 14}}));
 }
 
 TEST(PillarUpdate, Case1SeenAgainIncreases_Eq12)
@@ -1198,6 +1225,53 @@ TEST(GroundSeenOnce, GroundIsKeptUnderBeamsThatCrowdNearTheHorizon)
     {
         EXPECT_TRUE(on[k]) << "probe " << k << ": ground seen once";
         EXPECT_FALSE(off[k]) << "probe " << k << ": without the rule, a second sighting";
+    }
+}
+
+// A facade 30 m ahead of a VLP-32C driving towards it at 1 m a scan. Its beams near the horizon
+// are a third of a degree apart, its top ones 4.7 degrees: the top beam meets the facade 0.27 m
+// lower in each scan, 2.5 m below the next beam up. The facade's foot pillar holds heights of
+// both spacings; each height's interval takes the widths of the beams around it, so the top
+// beam's sightings overlap and confirm one another, as one surface seen again; with the widths
+// of the pillar's middle height (the dense beams) each would be seen once.
+TEST(RangeAdaptiveIntervals, EachHeightTakesTheGapOfTheBeamsAroundIt)
+{
+    const std::vector<double> vlp32c{
+        15.0,   10.333, 7.0,    4.667,  3.333,  2.333,  1.667,  1.333,  1.0,     0.667, 0.333,
+        0.0,    -0.333, -0.667, -1.0,   -1.333, -1.667, -2.0,   -2.333, -2.667,  -3.0,  -3.333,
+        -3.667, -4.0,   -4.667, -5.333, -6.148, -7.254, -8.843, -11.31, -15.639, -25.0};
+    Params prm;
+    prm.p_empty_init = 0.42;  // offline: a height seen once needs a second sighting
+    PillarGrid grid(GridGeometry(), prm);
+    grid.setSensorModel(SensorModel::fromBeams(vlp32c, 0.2));
+    const double wall = 30.5;  // the facade, 12 m tall, across the middle of pillar 30
+    for (int k = 0; k < 3; ++k)
+    {
+        const double at = k;  // the sensor's x
+        std::vector<float> x, y, z;
+        for (int a = -25; a <= 25; ++a)
+        {
+            const double az = a * 0.2 * M_PI / 180.0;
+            for (const double e_deg : vlp32c)
+            {
+                const double t = std::tan(e_deg * M_PI / 180.0);
+                double d = (wall - at) / std::cos(az);  // horizontal, to the facade
+                if (t < 0) d = std::min(d, kSensorZ / -t);
+                if (d * t > 12.0 - kSensorZ) continue;  // over the roof
+                x.push_back(float(d * std::cos(az)));
+                y.push_back(float(d * std::sin(az)));
+                z.push_back(float(d * t));
+            }
+        }
+        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+        T.translation() = Eigen::Vector3d(at, 0.0, kSensorZ);
+        grid.insertScan({x.data(), y.data(), z.data(), x.size()}, T);
+    }
+    // The top beam met the facade at 9.8, 9.5 and 9.3 m (pillar (30, 0), 0.1 m to the side).
+    for (int k = 0; k < 3; ++k)
+    {
+        const double h = kSensorZ + (wall - k) * std::tan(15.0 * M_PI / 180.0);
+        EXPECT_TRUE(grid.isStatic(wall, 0.1, h)) << "the top beam's sighting of scan " << k;
     }
 }
 

@@ -38,40 +38,6 @@ LogOddsModel LogOddsModel::of(const PillarGrid& grid)
     return m;
 }
 
-std::size_t spansFromCells(const int32_t* cells, std::size_t n, int32_t gap_cells,
-                           int32_t pad_cells, Span* out)
-{
-    if (n == 0) return 0;
-    std::size_t count = 0;
-    // Work in int64 so padding near the int32 limits cannot overflow; spans are clamped back.
-    constexpr int64_t kLo = std::numeric_limits<int32_t>::min();
-    constexpr int64_t kHi = std::numeric_limits<int32_t>::max();
-    auto emit = [&](int64_t lo, int64_t hi)
-    {
-        lo = std::max(kLo, lo - pad_cells);
-        hi = std::min(kHi, hi + pad_cells);
-        if (count > 0 && out[count - 1].hi >= lo)
-            out[count - 1].hi = static_cast<int32_t>(std::max<int64_t>(out[count - 1].hi, hi));
-        else
-            out[count++] = {static_cast<int32_t>(lo), static_cast<int32_t>(hi)};
-    };
-    int64_t lo = cells[0];
-    int64_t last = cells[0];
-    for (std::size_t i = 1; i < n; ++i)
-    {
-        const int64_t c = cells[i];
-        // Cells last and c leave (c - last - 1) empty cells between them.
-        if (c - last - 1 > gap_cells)
-        {
-            emit(lo, last + 1);
-            lo = c;
-        }
-        last = c;
-    }
-    emit(lo, last + 1);
-    return count;
-}
-
 void PillarUpdater::update(Pillar& g, const Span* t, std::size_t nt, int32_t ceiling,
                            const BeamGate* gate)
 {

@@ -64,9 +64,13 @@ struct IntervalWidths
 
     static IntervalWidths of(const PillarGrid& grid, double d, double tan_el)
     {
+        return ofBeamGap(grid, d * grid.beamGapSlope(tan_el));  // between the beams around it
+    }
+    /** The widths where the sensor's beams are `beam_gap` metres apart. */
+    static IntervalWidths ofBeamGap(const PillarGrid& grid, double beam_gap)
+    {
         const Params& prm = grid.params();
         const double inv_res = 1.0 / grid.geometry().height_resolution;
-        const double beam_gap = d * grid.beamGapSlope(tan_el);  // between the beams around it
         return {floorCells(std::max(prm.merge_gap, beam_gap) * inv_res + 1e-9),
                 ceilCells(std::max(prm.interval_padding, 0.5 * beam_gap) * inv_res - 1e-9)};
     }

@@ -55,6 +55,11 @@ struct ScanBuckets
     std::vector<uint32_t> edge_span_counts;  ///< per pillar
     /** @} */
 
+    /** Per row of the grid's range-image layout (buildSpans()): the gap between the sensor's
+     *  beams around the row's middle elevation (PillarGrid::beamGapSlope()), for the interval
+     *  widths of each height. */
+    std::vector<double> gap_slope_by_row;
+
     /** Pillar p's edge spans (after buildSpans()), their count in `count` (0: none). */
     [[nodiscard]] const Span* edgeSpansOf(std::size_t p, std::size_t& count) const
     {

@@ -7,6 +7,7 @@
  */
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -67,12 +68,49 @@ struct LogOddsModel
 };
 
 /** Heights (already as cells, sorted ascending) of one pillar in one scan merged into spans
- *  (Eq. 4): consecutive cells whose empty gap is at most `gap_cells` share a span; each span is
- *  widened by `pad_cells` on both sides, and spans that then touch or overlap are joined.
- *  Writes the spans to `out`, which must have room for `n` (there are never more), and
- *  returns their count. */
-std::size_t spansFromCells(const int32_t* sorted_cells, std::size_t n, int32_t gap_cells,
-                           int32_t pad_cells, Span* out);
+ *  (Eq. 4), with the widths of each height: `widthsAt(h)` gives the `gap` and `pad` (cells) at
+ *  height h, a cell index (h + 0.5 the middle of cell h; between two cells, their middle), and
+ *  no gap is less than `least_gap` (it is asked only of cells farther apart). Consecutive cells
+ *  whose empty gap is at most the gap at their middle share a span; each span is widened below
+ *  by the pad at its lowest cell and above by the pad at its highest, and spans that then touch
+ *  or overlap are joined. Writes the spans to `out`, which must have room for `n` (there are
+ *  never more), and returns their count. */
+template <class WidthsAt>
+std::size_t spansFromCells(const int32_t* sorted_cells, std::size_t n, WidthsAt&& widthsAt,
+                           int32_t least_gap, Span* out)
+{
+    if (n == 0) return 0;
+    std::size_t count = 0;
+    // Work in int64 so padding near the int32 limits cannot overflow; spans are clamped back.
+    constexpr int64_t kLo = std::numeric_limits<int32_t>::min();
+    constexpr int64_t kHi = std::numeric_limits<int32_t>::max();
+    auto emit = [&](int64_t lo, int64_t last)  // cells lo to last
+    {
+        const int64_t a = std::max<int64_t>(kLo, lo - widthsAt(static_cast<double>(lo)).pad);
+        const int64_t b =
+            std::min<int64_t>(kHi, last + 1 + widthsAt(static_cast<double>(last)).pad);
+        if (count > 0 && out[count - 1].hi >= a)
+            out[count - 1].hi = static_cast<int32_t>(std::max<int64_t>(out[count - 1].hi, b));
+        else
+            out[count++] = {static_cast<int32_t>(a), static_cast<int32_t>(b)};
+    };
+    int64_t lo = sorted_cells[0];
+    int64_t last = sorted_cells[0];
+    for (std::size_t i = 1; i < n; ++i)
+    {
+        const int64_t c = sorted_cells[i];
+        // Cells last and c leave (c - last - 1) empty cells between them.
+        if (c - last - 1 > least_gap &&
+            c - last - 1 > widthsAt(0.5 * static_cast<double>(last + c)).gap)
+        {
+            emit(lo, last);
+            lo = c;
+        }
+        last = c;
+    }
+    emit(lo, last);
+    return count;
+}
 
 /** The Bayes update of global pillars by one scan's spans, with its reusable storage. One per
  *  thread. */
