@@ -25,6 +25,7 @@
 #include "hif/io/KittiSequence.h"
 #include "hif/io/Labels.h"
 #include "job_runner.h"
+#include "lidar_beams.h"
 
 using nlohmann::json;
 
@@ -70,16 +71,11 @@ TEST(HifSyntheticKitti, EachSensorScansWithItsOwnBeams)
         for (int b = 0; b < n; ++b) e.push_back(top - (top - bottom) * b / (n - 1));
         return e;
     };
-    // The VLP-32C's beams as its manual lists them: uneven, crowded near the horizon.
-    const std::vector<double> vlp32c{
-        15.0,   10.333, 7.0,    4.667,  3.333,  2.333,  1.667,  1.333,  1.0,     0.667, 0.333,
-        0.0,    -0.333, -0.667, -1.0,   -1.333, -1.667, -2.0,   -2.333, -2.667,  -3.0,  -3.333,
-        -3.667, -4.0,   -4.667, -5.333, -6.148, -7.254, -8.843, -11.31, -15.639, -25.0};
     for (const Case& c : std::vector<Case>{{"hdl-64e", evenly(64, 2.0, -24.8)},
                                            {"hdl-32e", evenly(32, 10.67, -30.67)},
                                            {"vlp-16", evenly(16, 15.0, -15.0)},
                                            {"os1-128", evenly(128, 22.5, -22.5)},
-                                           {"vlp-32c", vlp32c},
+                                           {"vlp-32c", hif::test::vlp32cBeams()},
                                            {"mid-70", {}}})
     {
         SCOPED_TRACE(c.sensor);

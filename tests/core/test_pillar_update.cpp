@@ -14,6 +14,7 @@
 #include "hif/PillarGrid.h"
 #include "hif/detail/InsertSteps.h"
 #include "hif/detail/PillarUpdate.h"
+#include "lidar_beams.h"
 
 using namespace hif;
 using namespace hif::detail;
@@ -1203,10 +1204,7 @@ TEST(GroundSeenOnce, AFloorThatRunsOnBothWaysIsKeptWhatStandsOnItIsNot)
 // several median spacings away: the run goes on, and the ground is kept after one sighting.
 TEST(GroundSeenOnce, GroundIsKeptUnderBeamsThatCrowdNearTheHorizon)
 {
-    const std::vector<double> vlp32c{
-        15.0,   10.333, 7.0,    4.667,  3.333,  2.333,  1.667,  1.333,  1.0,     0.667, 0.333,
-        0.0,    -0.333, -0.667, -1.0,   -1.333, -1.667, -2.0,   -2.333, -2.667,  -3.0,  -3.333,
-        -3.667, -4.0,   -4.667, -5.333, -6.148, -7.254, -8.843, -11.31, -15.639, -25.0};
+    const std::vector<double> vlp32c = hif::test::vlp32cBeams();
     const auto rad = [](double deg) { return deg * M_PI / 180.0; };
     const auto ground = [](int, double t)
     { return t < 0 ? -kSensorZ / t : std::numeric_limits<double>::infinity(); };
@@ -1236,10 +1234,7 @@ TEST(GroundSeenOnce, GroundIsKeptUnderBeamsThatCrowdNearTheHorizon)
 // of the pillar's middle height (the dense beams) each would be seen once.
 TEST(RangeAdaptiveIntervals, EachHeightTakesTheGapOfTheBeamsAroundIt)
 {
-    const std::vector<double> vlp32c{
-        15.0,   10.333, 7.0,    4.667,  3.333,  2.333,  1.667,  1.333,  1.0,     0.667, 0.333,
-        0.0,    -0.333, -0.667, -1.0,   -1.333, -1.667, -2.0,   -2.333, -2.667,  -3.0,  -3.333,
-        -3.667, -4.0,   -4.667, -5.333, -6.148, -7.254, -8.843, -11.31, -15.639, -25.0};
+    const std::vector<double> vlp32c = hif::test::vlp32cBeams();
     Params prm;
     prm.p_empty_init = 0.42;  // offline: a height seen once needs a second sighting
     PillarGrid grid(GridGeometry(), prm);

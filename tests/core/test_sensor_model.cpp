@@ -7,6 +7,7 @@
  */
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "hif/io/KittiSequence.h"
 #include "hif/io/Rings.h"
 #include "kitti_fixture.h"
+#include "lidar_beams.h"
 
 using namespace hif;
 
@@ -66,10 +68,8 @@ TEST(SensorModel, RecoversTheBeamsAndStepOfASpinningLidar)
 // between two beams (PillarGrid::beamGapSlope(), the interval widths) is the local one.
 TEST(SensorModel, RecoversUnevenBeamsThatCrowdNearTheHorizon)
 {
-    const std::vector<double> beams{-25.0,  -15.639, -11.31, -8.843, -7.254, -6.148, -5.333, -4.667,
-                                    -4.0,   -3.667,  -3.333, -3.0,   -2.667, -2.333, -2.0,   -1.667,
-                                    -1.333, -1.0,    -0.667, -0.333, 0.0,    0.333,  0.667,  1.0,
-                                    1.333,  1.667,   2.333,  3.333,  4.667,  7.0,    10.333, 15.0};
+    std::vector<double> beams = hif::test::vlp32cBeams();
+    std::sort(beams.begin(), beams.end());  // ascending, as the model holds them
     Cloud c;
     for (int col = 0; col < 1800; ++col)
         for (double e : beams) c.add(e, col * 0.2, 20.0 + 10.0 * ((col * 7) % 13) / 13.0);
