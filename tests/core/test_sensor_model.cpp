@@ -50,6 +50,8 @@ TEST(SensorModel, RecoversTheBeamsAndStepOfASpinningLidar)
     ASSERT_EQ(m->beam_elevations_deg.size(), 32u) << m->describe();
     for (std::size_t b = 0; b < 32; ++b) EXPECT_NEAR(m->beam_elevations_deg[b], beams[b], 0.02);
     EXPECT_NEAR(m->vertical_spacing_deg, 41.34 / 31.0, 0.02);
+    EXPECT_NE(m->describe().find("deg apart (median), 0.200 deg horizontally"), std::string::npos)
+        << m->describe();
     EXPECT_NEAR(m->horizontal_resolution_deg, 0.2, 0.01);
     EXPECT_EQ(m->azimuth_coverage_deg, 360.0);
     EXPECT_FALSE(m->contradiction(*m));
@@ -79,6 +81,8 @@ TEST(SensorModel, RecoversUnevenBeamsThatCrowdNearTheHorizon)
     for (std::size_t b = 0; b < beams.size(); ++b)
         EXPECT_NEAR(m->beam_elevations_deg[b], beams[b], 0.02);
     EXPECT_NEAR(m->vertical_spacing_deg, 1.0 / 3.0, 0.01);
+    // The log line says the beams are uneven: their widest gap beside the median.
+    EXPECT_NE(m->describe().find("apart (median; 9.36"), std::string::npos) << m->describe();
     Params prm;
     PillarGrid grid(GridGeometry(), prm);
     grid.setSensorModel(*m);

@@ -260,13 +260,25 @@ double SensorModel::beamGapSlope(const std::vector<double>& tangents, double tan
 
 std::string SensorModel::describe() const
 {
-    char buf[256];
+    char buf[320];
     if (hasRings())
+    {
+        // Beams spaced unevenly (a VLP-32C's crowd near the horizon): the widest gap too, where
+        // it is wider than the one and a half median spacings that neighbouring beams lie in.
+        double widest = 0.0;
+        for (std::size_t k = 1; k < beam_elevations_deg.size(); ++k)
+            widest =
+                std::max(widest, std::abs(beam_elevations_deg[k] - beam_elevations_deg[k - 1]));
+        char uneven[64] = "";
+        if (widest > 1.5 * vertical_spacing_deg)
+            std::snprintf(uneven, sizeof uneven, "; %.3f at the widest", widest);
         std::snprintf(buf, sizeof buf,
-                      "%zu beams from %.2f to %.2f deg, %.3f deg apart (median), %.3f deg "
+                      "%zu beams from %.2f to %.2f deg, %.3f deg apart (median%s), %.3f deg "
                       "horizontally, %.0f deg of azimuth",
                       beam_elevations_deg.size(), elevation_min_deg, elevation_max_deg,
-                      vertical_spacing_deg, horizontal_resolution_deg, azimuth_coverage_deg);
+                      vertical_spacing_deg, uneven, horizontal_resolution_deg,
+                      azimuth_coverage_deg);
+    }
     else
         std::snprintf(buf, sizeof buf,
                       "no rings (non-repetitive pattern), elevations %.2f to %.2f deg, points "

@@ -57,7 +57,8 @@ struct SensorModel
      *  beamTangents(). */
     [[nodiscard]] double beamGapSlope(const std::vector<double>& tangents, double tan_el) const;
     /** One line for a log: "64 beams from -24.9 to 2.0 deg, 0.42 deg apart (median), 0.17 deg
-     *  horizontally, 360 deg of azimuth". */
+     *  horizontally, 360 deg of azimuth"; for beams spaced unevenly, whose widest gap is more
+     *  than one and a half median spacings, "(median; 9.361 at the widest)". */
     [[nodiscard]] std::string describe() const;
 
     /** Throws std::invalid_argument naming the first field that makes no sense (a spacing or
