@@ -22,19 +22,6 @@ std::vector<double> evenly(int n, double top, double bottom)
     return e;
 }
 
-/** A spinning sensor: `beams` evenly from `top` to `bottom` degrees, `columns` a turn. */
-Sensor spinning(const char* name, const char* description, int beams, double top, double bottom,
-                int columns, double max_range)
-{
-    Sensor s;
-    s.name = name;
-    s.description = description;
-    s.elevations_deg = evenly(beams, top, bottom);
-    s.columns = columns;
-    s.max_range = max_range;
-    return s;
-}
-
 /** A spinning sensor whose beams lie at the elevations `table` (degrees, any order),
  *  `columns` a turn. */
 Sensor spinningAt(const char* name, const char* description, std::vector<double> table, int columns,
@@ -48,6 +35,13 @@ Sensor spinningAt(const char* name, const char* description, std::vector<double>
     s.columns = columns;
     s.max_range = max_range;
     return s;
+}
+
+/** A spinning sensor: `beams` evenly from `top` to `bottom` degrees, `columns` a turn. */
+Sensor spinning(const char* name, const char* description, int beams, double top, double bottom,
+                int columns, double max_range)
+{
+    return spinningAt(name, description, evenly(beams, top, bottom), columns, max_range);
 }
 
 std::vector<Sensor> makeSensors()
