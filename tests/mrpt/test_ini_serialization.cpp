@@ -259,6 +259,8 @@ TEST(CHeightIntervalMapSerialization, Version0MapsStillLoad)
     {
         hif::Pillar without = *pillar;
         without.passed = {};
+        without.object_u = without.object_v = 0;  // nor where objects stood in them
+        without.object_weight = 0;
         expected.setPillar(idx, std::move(without));
     }
     EXPECT_FALSE(loaded.grid().sensorModel());

@@ -55,7 +55,7 @@ void bucketEdges(ScanBuckets& out, std::size_t v, PillarBeside&& pillarBeside)
     pairs.clear();
     for (std::size_t k = 0; k < v; ++k)
     {
-        const int32_t code = out.tmp_edge[k];
+        const int32_t code = out.tmp_edge[k] & kEdgeBits;
         if (code == 0) continue;
         const Beside& b = kBeside[static_cast<std::size_t>(code)];
         for (int s = 0; s < b.count; ++s)
@@ -72,6 +72,30 @@ void bucketEdges(ScanBuckets& out, std::size_t v, PillarBeside&& pillarBeside)
     out.edge_cells.resize(pairs.size());
     for (const auto& [p, z] : pairs) out.edge_cells[next[p]++] = z;
 }
+/** ScanBuckets::object_at from the entries' codes (tmp_code, in entry order): the places of
+ *  the entries more than Params::ground_max_step above the pillar's lowest. */
+void objectSightings(const PillarGrid& grid, ScanBuckets& out)
+{
+    const auto step = static_cast<int64_t>(
+        std::floor(grid.params().ground_max_step / grid.geometry().height_resolution + 1e-9));
+    const std::size_t np = out.pillarCount();
+    out.object_at.assign(np, {});
+    for (std::size_t p = 0; p < np; ++p)
+    {
+        const uint32_t b = out.offsets[p], e = out.offsets[p + 1];
+        int32_t low = out.cells[b];
+        for (uint32_t k = b + 1; k < e; ++k) low = std::min(low, out.cells[k]);
+        ScanBuckets::ObjectSightings& o = out.object_at[p];
+        for (uint32_t k = b; k < e; ++k)
+        {
+            if (int64_t{out.cells[k]} - low <= step) continue;
+            const auto code = static_cast<uint32_t>(out.tmp_code[k]);
+            o.sum_u += (static_cast<float>((code >> kPlaceShift) & 255u) + 0.5f) / 256.0f;
+            o.sum_v += (static_cast<float>((code >> (kPlaceShift + 8)) & 255u) + 0.5f) / 256.0f;
+            ++o.count;
+        }
+    }
+}
 }  // namespace
 
 void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Isometry3d& T,
@@ -83,10 +107,14 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
     out.tmp_m.resize(pts.size);
     out.tmp_n.resize(pts.size);
     out.tmp_z.resize(pts.size);
-    // Params::pillar_edge_margin: each point's edge code, for the edge cells.
+    // Each point's edge code (EdgeBits): with the gate, for the cells of its pillar where what
+    // stands above the ground was seen (ScanBuckets::object_at); with
+    // Params::pillar_edge_margin, for the edge cells too.
     const Params& prm = grid.params();
-    const bool edges = !keep_index && prm.miss_needs_beam && prm.pillar_edge_margin > 0.0;
-    if (edges) out.tmp_edge.resize(pts.size);
+    const bool codes = !keep_index && prm.miss_needs_beam;
+    const bool edges = codes && prm.pillar_edge_margin > 0.0;
+    if (codes) out.tmp_edge.resize(pts.size);
+    out.object_at.clear();
     out.edge_offsets.clear();
     out.edge_cells.clear();
     if (keep_index)
@@ -106,8 +134,8 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
                                 out.tmp_z.data(),
                                 keep_index ? out.tmp_src.data() : nullptr,
                                 keep_index ? out.repeats.data() : nullptr,
-                                edges ? out.tmp_edge.data() : nullptr,
-                                prm.pillar_edge_margin / grid.geometry().pillar_size};
+                                codes ? out.tmp_edge.data() : nullptr,
+                                edges ? prm.pillar_edge_margin / grid.geometry().pillar_size : 0.0};
     const std::size_t n_chunks = (pts.size + kChunk - 1) / kChunk;
     std::array<ChunkSummary, 64> small_chunks;  // up to 1M points without allocation
     std::vector<ChunkSummary> big_chunks(n_chunks > small_chunks.size() ? n_chunks : 0);
@@ -137,7 +165,7 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
             std::copy_n(out.tmp_z.begin() + from, ch.kept, out.tmp_z.begin() + v);
             if (keep_index)
                 std::copy_n(out.tmp_src.begin() + from, ch.kept, out.tmp_src.begin() + v);
-            if (edges) std::copy_n(out.tmp_edge.begin() + from, ch.kept, out.tmp_edge.begin() + v);
+            if (codes) std::copy_n(out.tmp_edge.begin() + from, ch.kept, out.tmp_edge.begin() + v);
         }
         v += ch.kept;
         valid += ch.valid;
@@ -165,6 +193,7 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
     out.offsets.clear();
     out.cells.resize(v);
     out.index.resize(keep_index ? v : 0);
+    out.tmp_code.resize(codes ? v : 0);
     if (v == 0)
     {
         out.offsets.push_back(0);
@@ -213,6 +242,7 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
             const uint32_t slot = counts[bin[k]]++;
             out.cells[slot] = out.tmp_z[k];
             if (keep_index) out.index[slot] = out.tmp_src[k];
+            if (codes) out.tmp_code[slot] = out.tmp_edge[k];
         }
         if (edges)
         {
@@ -261,6 +291,7 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
             }
             out.cells[k] = out.tmp_z[src];
             if (keep_index) out.index[k] = out.tmp_src[src];
+            if (codes) out.tmp_code[k] = out.tmp_edge[src];
         }
         out.offsets.push_back(static_cast<uint32_t>(v));
         if (edges)
@@ -280,6 +311,7 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
                                        : std::numeric_limits<uint32_t>::max();
                         });
     }
+    if (codes) objectSightings(grid, out);
 }
 
 }  // namespace hif::detail

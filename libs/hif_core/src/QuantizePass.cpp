@@ -99,7 +99,9 @@ struct QuantizeChunk
     [[nodiscard]] int32_t edgeCode(double u, double v) const
     {
         return (u < edge_lo ? kEdgeLowM : 0) | (u > edge_hi ? kEdgeHighM : 0) |
-               (v < edge_lo ? kEdgeLowN : 0) | (v > edge_hi ? kEdgeHighN : 0);
+               (v < edge_lo ? kEdgeLowN : 0) | (v > edge_hi ? kEdgeHighN : 0) |
+               (static_cast<int32_t>(std::floor(u * 256.0)) << kPlaceShift) |
+               (static_cast<int32_t>(std::floor(v * 256.0)) << (kPlaceShift + 8));
     }
 
     static constexpr double kMinR2 = kMinRangeForElevation * kMinRangeForElevation;
@@ -146,7 +148,7 @@ struct QuantizeChunk
             st.prev_z = zc;
             if (repeat)
             {
-                if constexpr (kEdges) e_out[st.v - 1] |= e;  // the stored point of its run
+                if constexpr (kEdges) e_out[st.v - 1] |= e & kEdgeBits;  // the stored point's run
                 continue;
             }
             m_out[st.v] = m;
@@ -249,7 +251,13 @@ struct QuantizeChunk
                         _mm256_and_pd(_mm256_cmp_pd(w, vedge_lo, _CMP_LT_OQ), _mm256_set1_pd(4.0)),
                         _mm256_and_pd(_mm256_cmp_pd(w, vedge_hi, _CMP_GT_OQ),
                                       _mm256_set1_pd(8.0))));
-                e = _mm256_cvttpd_epi32(code);
+                // Where in the pillar (edgeCode()): floor(256 u) 2^8 + floor(256 w) 2^16.
+                const __m256d place = _mm256_add_pd(
+                    _mm256_mul_pd(_mm256_floor_pd(_mm256_mul_pd(u, _mm256_set1_pd(256.0))),
+                                  _mm256_set1_pd(256.0)),
+                    _mm256_mul_pd(_mm256_floor_pd(_mm256_mul_pd(w, _mm256_set1_pd(256.0))),
+                                  _mm256_set1_pd(65536.0)));
+                e = _mm256_cvttpd_epi32(_mm256_add_pd(code, place));
             }
             const auto ok = static_cast<unsigned>(_mm256_movemask_pd(okm));
             valid += static_cast<std::size_t>(__builtin_popcount(ok));
@@ -278,11 +286,15 @@ struct QuantizeChunk
                 const __m128i rep = _mm_cmpeq_epi32(
                     _mm_and_si128(_mm_set1_epi32(static_cast<int>(repeat)), bits), bits);
                 const __m128i next1 = _mm_srli_si128(rep, 4);  // lane k + 1 repeats lane k
-                __m128i run = _mm_or_si128(e, _mm_and_si128(_mm_srli_si128(e, 4), next1));
+                // Only the edge bits join; each stored point keeps its own place.
+                const __m128i edge_bits = _mm_set1_epi32(kEdgeBits);
+                const __m128i eb = _mm_and_si128(e, edge_bits);
+                __m128i run = _mm_or_si128(eb, _mm_and_si128(_mm_srli_si128(eb, 4), next1));
                 run = _mm_or_si128(run,
                                    _mm_and_si128(_mm_srli_si128(run, 8),
                                                  _mm_and_si128(next1, _mm_srli_si128(next1, 4))));
                 if (repeat & 1u) e_out[v - 1] |= _mm_cvtsi128_si32(run);
+                run = _mm_or_si128(run, _mm_andnot_si128(edge_bits, e));
                 _mm_storeu_si128(reinterpret_cast<__m128i*>(e_out + v),
                                  _mm_shuffle_epi8(run, shuffle));
             }

@@ -30,19 +30,24 @@ struct ChunkSummary
 };
 
 /** Bits of a point's edge code (quantizeChunk()): the point lies within the edge margin of
- *  its pillar's low-m, high-m, low-n or high-n edge. */
+ *  its pillar's low-m, high-m, low-n or high-n edge (kEdgeBits: a stored point's are joined
+ *  by those of the repeats of its run); and where in its pillar the stored point lies, in
+ *  1/256 of the pillar along m (bits kPlaceShift to kPlaceShift + 7) and n (the next 8). */
 enum EdgeBits : int32_t
 {
     kEdgeLowM = 1,
     kEdgeHighM = 2,
     kEdgeLowN = 4,
-    kEdgeHighN = 8
+    kEdgeHighN = 8,
+    kEdgeBits = 15,
+    kPlaceShift = 8
 };
 
 /** Where pass 1 writes a chunk's kept points: their pillar (m, n) and height cell z from the
  *  chunk's first index on; with `src` (classification), their input index, and in `repeats`,
  *  1 for each input point that repeats the one before it; with `edge` (insertion with
- *  Params::pillar_edge_margin), their edge code (EdgeBits). */
+ *  Params::miss_needs_beam), their edge code (EdgeBits; its edge bits only with
+ *  Params::pillar_edge_margin, `edge_fraction` > 0). */
 struct ChunkOutput
 {
     int32_t* m = nullptr;

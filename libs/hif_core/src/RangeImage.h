@@ -240,6 +240,27 @@ struct BeamGate
      *  diagonal): a sighting of it that much thicker is still one sighting, where nothing
      *  touching goes on above it. */
     int32_t floor_slope_cells = 0;
+    /** The axis (as `base`) through where in the pillar what stands above its ground was seen
+     *  (Pillar::object_u, object_v), for the intervals above its floor (passedCells() with
+     *  `object`), when `object_axis_set`. The gate reads the beams around one axis; through
+     *  the centre of a 1 m pillar, they pass its free part beside a pole, a trunk or the
+     *  corner of a box that stands off the centre, and would show it gone. */
+    Eigen::Vector3d object_axis = Eigen::Vector3d::Zero();
+    bool object_axis_set = false;
+
+    /** Sets object_axis from pillar `pil` at `idx` of `geo` (unset where nothing above its
+     *  ground was seen yet), for a sensor at `sensor` (world frame) whose frame
+     *  `world_to_sensor` rotates to. */
+    void setObjectAxis(const GridGeometry& geo, PillarIndex idx, const Pillar& pil,
+                       const Eigen::Vector3d& sensor, const Eigen::Matrix3d& world_to_sensor)
+    {
+        object_axis_set = pil.object_weight != 0;
+        if (!object_axis_set) return;
+        const double x = geo.origin_x + (idx.m + (pil.object_u + 0.5) / 256.0) * geo.pillar_size;
+        const double y = geo.origin_y + (idx.n + (pil.object_v + 0.5) / 256.0) * geo.pillar_size;
+        object_axis =
+            world_to_sensor * Eigen::Vector3d(x - sensor.x(), y - sensor.y(), -sensor.z());
+    }
 
     /** The widths (IntervalWidths) of interval [lo, hi) of this pillar: those of its middle
      *  height at the pillar's distance. */
@@ -394,11 +415,12 @@ struct BeamGate
      *  beam passed through `core` (floorOrObject()). Empty when none passed, or when a return
      *  between those heights lies near the pillar (something is there: a veto). Without the
      *  heights of a surface seen at the pillar's edge (edge_spans): it may go on into the
-     *  pillar where the beams toward its centre did not go. */
-    void passedCells(int32_t lo, int32_t hi, Span core, std::vector<Span>& out,
-                     bool sky = false) const
+     *  pillar where the beams toward its centre did not go. With `object` (an interval above
+     *  the floor, floorOrObject()), the beams are those around object_axis. */
+    void passedCells(int32_t lo, int32_t hi, Span core, std::vector<Span>& out, bool sky = false,
+                     bool object = false) const
     {
-        beamsThrough(lo, hi, core, out, sky);
+        beamsThrough(lo, hi, core, out, sky, object);
         if (edge_count != 0 && !out.empty()) withoutEdges(out);
     }
 
@@ -406,11 +428,12 @@ struct BeamGate
     void withoutEdges(std::vector<Span>& spans) const;
 
     /** passedCells() before the edges' heights are taken out. */
-    void beamsThrough(int32_t lo, int32_t hi, Span core, std::vector<Span>& out, bool sky) const
+    void beamsThrough(int32_t lo, int32_t hi, Span core, std::vector<Span>& out, bool sky,
+                      bool object = false) const
     {
         out.clear();
         Axis a;
-        if (!axisOf(lo, hi, a)) return;
+        if (!axisOf(lo, hi, a, object)) return;
         if (sky) a.horizon_tan = up.z() != 0.0 ? -(up.x() * a.hx + up.y() * a.hy) / up.z() : 0.0;
         if (core.lo <= lo && core.hi >= hi)
         {
@@ -571,11 +594,13 @@ private:
         int ncols = 0;
     };
 
-    [[nodiscard]] bool axisOf(int32_t lo, int32_t hi, Axis& a) const
+    /** With `object`, along object_axis where it is set. */
+    [[nodiscard]] bool axisOf(int32_t lo, int32_t hi, Axis& a, bool object = false) const
     {
         const RangeImageLayout& l = *layout;
-        const Eigen::Vector3d p = base + up * (lo * res);
-        const double hi_z = base.z() + up.z() * (hi * res);
+        const Eigen::Vector3d& through = object && object_axis_set ? object_axis : base;
+        const Eigen::Vector3d p = through + up * (lo * res);
+        const double hi_z = through.z() + up.z() * (hi * res);
         a.d = std::sqrt(p.x() * p.x() + p.y() * p.y());
         if (a.d == 0.0) return false;
         a.hx = p.x() / a.d;

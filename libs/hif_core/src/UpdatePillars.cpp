@@ -12,6 +12,24 @@
 
 namespace hif::detail
 {
+namespace
+{
+/** Adds a scan's sightings of what stands above pillar `pil`'s ground (ScanBuckets::
+ *  object_at) to its mean place (Pillar::object_u, object_v), over the last
+ *  Pillar::kObjectSightings sightings at most: the mean follows what stands there now. */
+void addObjectSightings(Pillar& pil, const ScanBuckets::ObjectSightings& s)
+{
+    if (s.count == 0) return;
+    const double w = pil.object_weight, n = s.count;
+    const double u = pil.object_weight ? (pil.object_u + 0.5) / 256.0 : 0.0;
+    const double v = pil.object_weight ? (pil.object_v + 0.5) / 256.0 : 0.0;
+    const double mu = (u * w + s.sum_u) / (w + n), mv = (v * w + s.sum_v) / (w + n);
+    pil.object_u = static_cast<uint8_t>(std::clamp(std::floor(mu * 256.0), 0.0, 255.0));
+    pil.object_v = static_cast<uint8_t>(std::clamp(std::floor(mv * 256.0), 0.0, 255.0));
+    pil.object_weight = static_cast<uint16_t>(std::min<double>(w + n, Pillar::kObjectSightings));
+}
+}  // namespace
+
 InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
 {
     PillarTable& pillars = GridAccess::pillars(grid);
@@ -50,7 +68,9 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
             ws.ground_generation = 1;
         }
     }
-    auto gateOf = [&](std::size_t p)
+    // What stands above a pillar's ground is judged by the beams toward where it was seen
+    // in the pillar (Pillar::object_u, object_v: before this scan's sightings).
+    auto gateOf = [&](std::size_t p, const Pillar& pil)
     {
         const PillarIndex idx = unpackKey(scan.keys[p]);
         const Eigen::Vector3d axis(geo.centreX(idx.m) - scan.sensor.x(),
@@ -74,6 +94,7 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
         gate.next_beam_rows = GridAccess::nextBeamRows(grid);
         gate.edge_spans = scan.edgeSpansOf(p, gate.edge_count);
         gate.surfaces_into = surfaces_into;
+        gate.setObjectAxis(geo, idx, pil, scan.sensor, scan.world_to_sensor);
         return gate;
     };
 
@@ -107,9 +128,11 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
             if (p + 2 * kAhead < p1) pillars.prefetch(scan.keys[p + 2 * kAhead]);
             if (p + kAhead < p1) find(p + kAhead);
             if (!targets[p]) continue;
-            const BeamGate gate = gated ? gateOf(p) : BeamGate{};
-            updater.update(*targets[p], scan.spans.data() + scan.offsets[p], scan.span_counts[p],
+            Pillar& pil = *targets[p];
+            const BeamGate gate = gated ? gateOf(p, pil) : BeamGate{};
+            updater.update(pil, scan.spans.data() + scan.offsets[p], scan.span_counts[p],
                            scan.ceilings[p], gated ? &gate : nullptr);
+            if (gated) addObjectSightings(pil, scan.object_at[p]);
         }
     };
     ThreadArena* arena = GridAccess::arena(grid);
@@ -130,9 +153,10 @@ InsertStats updatePillars(PillarGrid& grid, const ScanBuckets& scan)
         Pillar& pil = pillars[scan.keys[p]];
         pil.logodds_empty = model.clamp(model.empty_init);
         ++st.pillars_created;
-        const BeamGate gate = gated ? gateOf(p) : BeamGate{};
+        const BeamGate gate = gated ? gateOf(p, pil) : BeamGate{};
         ws.updater.update(pil, scan.spans.data() + scan.offsets[p], scan.span_counts[p],
                           scan.ceilings[p], gated ? &gate : nullptr);
+        if (gated) addObjectSightings(pil, scan.object_at[p]);
     }
     st.pillars_updated = np - st.pillars_created;
     return st;

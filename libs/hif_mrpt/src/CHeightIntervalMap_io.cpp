@@ -26,10 +26,13 @@ namespace
  *  range (Field::since_version), version 3 the sensor model (its option, and the model after
  *  the pillars), version 4 the `online` option and the free-space test's scans (after the
  *  model), version 5 the ground options, version 6 each pillar's cells beams passed through
- *  (Pillar::passed, after seen_top), version 7 the pillar edge margin; every older version
- *  is still read (its pillars with no such cells: what later scans insert there starts from
- *  p_empty_init until beams pass). */
-constexpr uint8_t kSerializationVersion = 7;
+ *  (Pillar::passed, after seen_top), version 7 the pillar edge margin, version 8 where in
+ *  each pillar what stands above its ground was seen (Pillar::object_u, object_v,
+ *  object_weight, after the passed cells); every older version is still read (its pillars
+ *  with no such cells: what later scans insert there starts from p_empty_init until beams
+ *  pass; nothing seen yet above the ground: judged by the beams toward the pillar's centre
+ *  until it is). */
+constexpr uint8_t kSerializationVersion = 8;
 /** More beams than any LiDAR has: a larger count in a file is corruption. */
 constexpr uint32_t kMaxBeams = 4096;
 /** A free-space image in a file has the layout of the map's sensor model, and at most this
@@ -176,7 +179,8 @@ void CHeightIntervalMap::serializeTo(mrpt::serialization::CArchive& out) const
     for (const auto& [idx, pillar] : pillars)
     {
         out << idx.m << idx.n << pillar->logodds_empty << pillar->seen_top << pillar->passed.base
-            << pillar->passed.bits[0] << pillar->passed.bits[1]
+            << pillar->passed.bits[0] << pillar->passed.bits[1] << pillar->object_u
+            << pillar->object_v << pillar->object_weight
             << static_cast<uint32_t>(pillar->intervals.size());
         for (const Interval& iv : pillar->intervals) out << iv.lo << iv.hi << iv.logodds;
     }
@@ -216,6 +220,14 @@ void CHeightIntervalMap::serializeFrom(mrpt::serialization::CArchive& in, uint8_
             in >> p.base >> p.bits[0] >> p.bits[1];
             if (p.base == PassedCells::kNone && (p.bits[0] != 0 || p.bits[1] != 0))
                 THROW_EXCEPTION("Corrupt hif map: a pillar's passed cells without a base");
+        }
+        if (version >= 8)
+        {
+            in >> pillar.object_u >> pillar.object_v >> pillar.object_weight;
+            if (pillar.object_weight > Pillar::kObjectSightings)
+                THROW_EXCEPTION_FMT("Corrupt hif map: a pillar's object weight %u, above %u",
+                                    unsigned{pillar.object_weight},
+                                    unsigned{Pillar::kObjectSightings});
         }
         in >> count;
         if (count > params().max_intervals_per_pillar)

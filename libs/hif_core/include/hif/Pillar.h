@@ -63,11 +63,20 @@ struct Pillar
     float logodds_empty = 0.0f;
     int32_t seen_top = std::numeric_limits<int32_t>::min();
     PassedCells passed;
+    /** Where in the pillar what stands above its ground was seen: the mean of its sightings
+     *  (ScanBuckets::object_at) as offsets from the pillar's low corner along m and n, in
+     *  1/256 of the pillar, over the last kObjectSightings of them (a few scans: it follows what
+     * stands there now) (`object_weight`; 0: nothing seen yet). The beams that judge what stands
+     * there are those toward this place (BeamGate::object_axis), not toward the pillar's centre. */
+    uint8_t object_u = 0, object_v = 0;
+    uint16_t object_weight = 0;
+    static constexpr uint16_t kObjectSightings = 32;
     std::vector<Interval> intervals;
     friend bool operator==(const Pillar& a, const Pillar& b)
     {
         return a.logodds_empty == b.logodds_empty && a.seen_top == b.seen_top &&
-               a.passed == b.passed && a.intervals == b.intervals;
+               a.passed == b.passed && a.object_u == b.object_u && a.object_v == b.object_v &&
+               a.object_weight == b.object_weight && a.intervals == b.intervals;
     }
 };
 

@@ -29,6 +29,17 @@ struct ScanBuckets
     std::vector<uint32_t> offsets;      ///< pillar p owns items [offsets[p], offsets[p+1])
     std::vector<int32_t> ceilings;      ///< first cell above what the scan could see (kAllHeights)
     std::vector<uint32_t> span_counts;  ///< pillar p's spans: spans[offsets[p]] onwards
+    /** Where in pillar p the scan saw what stands above its ground (Pillar::object_u, v):
+     *  the sums of the offsets (fractions of the pillar along m and n) of its entries more
+     *  than Params::ground_max_step above the pillar's lowest (the first point of each run of
+     *  repeats), and their count.
+     *  Insertion with Params::miss_needs_beam only (else empty). */
+    struct ObjectSightings
+    {
+        float sum_u = 0.0f, sum_v = 0.0f;
+        uint32_t count = 0;
+    };
+    std::vector<ObjectSightings> object_at;
     /** @} */
 
     /** @name Per cell entry, grouped by pillar
@@ -105,7 +116,7 @@ struct ScanBuckets
     [[nodiscard]] std::size_t entryCount() const { return cells.size(); }
 
     /** Scratch of bucketPoints(), kept to be reused. */
-    std::vector<int32_t> tmp_m, tmp_n, tmp_z, tmp_edge;
+    std::vector<int32_t> tmp_m, tmp_n, tmp_z, tmp_edge, tmp_code;
     std::vector<uint32_t> tmp_src, tmp_bin, tmp_counts, tmp_pillar;
     std::vector<std::pair<uint32_t, int32_t>> tmp_edge_pairs;
 };
