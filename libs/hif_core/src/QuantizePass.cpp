@@ -70,6 +70,8 @@ struct QuantizeChunk
     /** Edge codes: a point whose offset in its pillar (a fraction of the pillar's size) is
      *  below edge_lo or above edge_hi along an axis lies near that edge. */
     double edge_lo, edge_hi;
+    /** Whether there is an edge margin: without one, a point's edge bits are all 0. */
+    bool edge_bits_on;
 
     QuantizeChunk(const Eigen::Matrix3d& R, const Eigen::Vector3d& t, const GridGeometry& p,
                   double min_range, double edge_fraction)
@@ -91,7 +93,8 @@ struct QuantizeChunk
           inv_z(1.0 / p.height_resolution),
           min_range2(min_range * min_range),
           edge_lo(edge_fraction),
-          edge_hi(1.0 - edge_fraction)
+          edge_hi(1.0 - edge_fraction),
+          edge_bits_on(edge_fraction > 0.0)
     {
     }
 
@@ -243,21 +246,27 @@ struct QuantizeChunk
             if constexpr (kEdges)
             {
                 const __m256d u = _mm256_sub_pd(fm, fm_floor), w = _mm256_sub_pd(fn, fn_floor);
-                const __m256d code = _mm256_add_pd(
-                    _mm256_add_pd(
-                        _mm256_and_pd(_mm256_cmp_pd(u, vedge_lo, _CMP_LT_OQ), _mm256_set1_pd(1.0)),
-                        _mm256_and_pd(_mm256_cmp_pd(u, vedge_hi, _CMP_GT_OQ), _mm256_set1_pd(2.0))),
-                    _mm256_add_pd(
-                        _mm256_and_pd(_mm256_cmp_pd(w, vedge_lo, _CMP_LT_OQ), _mm256_set1_pd(4.0)),
-                        _mm256_and_pd(_mm256_cmp_pd(w, vedge_hi, _CMP_GT_OQ),
-                                      _mm256_set1_pd(8.0))));
                 // Where in the pillar (edgeCode()): floor(256 u) 2^8 + floor(256 w) 2^16.
                 const __m256d place = _mm256_add_pd(
                     _mm256_mul_pd(_mm256_floor_pd(_mm256_mul_pd(u, _mm256_set1_pd(256.0))),
                                   _mm256_set1_pd(256.0)),
                     _mm256_mul_pd(_mm256_floor_pd(_mm256_mul_pd(w, _mm256_set1_pd(256.0))),
                                   _mm256_set1_pd(65536.0)));
-                e = _mm256_cvttpd_epi32(_mm256_add_pd(code, place));
+                if (!edge_bits_on)
+                    e = _mm256_cvttpd_epi32(place);
+                else
+                {
+                    const __m256d code = _mm256_add_pd(
+                        _mm256_add_pd(_mm256_and_pd(_mm256_cmp_pd(u, vedge_lo, _CMP_LT_OQ),
+                                                    _mm256_set1_pd(1.0)),
+                                      _mm256_and_pd(_mm256_cmp_pd(u, vedge_hi, _CMP_GT_OQ),
+                                                    _mm256_set1_pd(2.0))),
+                        _mm256_add_pd(_mm256_and_pd(_mm256_cmp_pd(w, vedge_lo, _CMP_LT_OQ),
+                                                    _mm256_set1_pd(4.0)),
+                                      _mm256_and_pd(_mm256_cmp_pd(w, vedge_hi, _CMP_GT_OQ),
+                                                    _mm256_set1_pd(8.0))));
+                    e = _mm256_cvttpd_epi32(_mm256_add_pd(code, place));
+                }
             }
             const auto ok = static_cast<unsigned>(_mm256_movemask_pd(okm));
             valid += static_cast<std::size_t>(__builtin_popcount(ok));
@@ -277,27 +286,32 @@ struct QuantizeChunk
             _mm_storeu_si128(reinterpret_cast<__m128i*>(n_out + v), _mm_shuffle_epi8(n, shuffle));
             _mm_storeu_si128(reinterpret_cast<__m128i*>(z_out + v), _mm_shuffle_epi8(z, shuffle));
             if constexpr (kEdges)
-            {
-                // A repeat's edge code joins that of the stored point of its run: each lane
-                // takes the codes of the repeats after it in the group (a suffix OR over runs,
-                // in two steps), and a run that began before the group adds its first lanes'
-                // to the last point stored.
-                const __m128i bits = _mm_setr_epi32(1, 2, 4, 8);
-                const __m128i rep = _mm_cmpeq_epi32(
-                    _mm_and_si128(_mm_set1_epi32(static_cast<int>(repeat)), bits), bits);
-                const __m128i next1 = _mm_srli_si128(rep, 4);  // lane k + 1 repeats lane k
-                // Only the edge bits join; each stored point keeps its own place.
-                const __m128i edge_bits = _mm_set1_epi32(kEdgeBits);
-                const __m128i eb = _mm_and_si128(e, edge_bits);
-                __m128i run = _mm_or_si128(eb, _mm_and_si128(_mm_srli_si128(eb, 4), next1));
-                run = _mm_or_si128(run,
-                                   _mm_and_si128(_mm_srli_si128(run, 8),
-                                                 _mm_and_si128(next1, _mm_srli_si128(next1, 4))));
-                if (repeat & 1u) e_out[v - 1] |= _mm_cvtsi128_si32(run);
-                run = _mm_or_si128(run, _mm_andnot_si128(edge_bits, e));
-                _mm_storeu_si128(reinterpret_cast<__m128i*>(e_out + v),
-                                 _mm_shuffle_epi8(run, shuffle));
-            }
+                if (!edge_bits_on)  // no edge bits to join: each stored point's own place
+                    _mm_storeu_si128(reinterpret_cast<__m128i*>(e_out + v),
+                                     _mm_shuffle_epi8(e, shuffle));
+            if constexpr (kEdges)
+                if (edge_bits_on)
+                {
+                    // A repeat's edge code joins that of the stored point of its run: each lane
+                    // takes the codes of the repeats after it in the group (a suffix OR over runs,
+                    // in two steps), and a run that began before the group adds its first lanes'
+                    // to the last point stored.
+                    const __m128i bits = _mm_setr_epi32(1, 2, 4, 8);
+                    const __m128i rep = _mm_cmpeq_epi32(
+                        _mm_and_si128(_mm_set1_epi32(static_cast<int>(repeat)), bits), bits);
+                    const __m128i next1 = _mm_srli_si128(rep, 4);  // lane k + 1 repeats lane k
+                    // Only the edge bits join; each stored point keeps its own place.
+                    const __m128i edge_bits = _mm_set1_epi32(kEdgeBits);
+                    const __m128i eb = _mm_and_si128(e, edge_bits);
+                    __m128i run = _mm_or_si128(eb, _mm_and_si128(_mm_srli_si128(eb, 4), next1));
+                    run = _mm_or_si128(
+                        run, _mm_and_si128(_mm_srli_si128(run, 8),
+                                           _mm_and_si128(next1, _mm_srli_si128(next1, 4))));
+                    if (repeat & 1u) e_out[v - 1] |= _mm_cvtsi128_si32(run);
+                    run = _mm_or_si128(run, _mm_andnot_si128(edge_bits, e));
+                    _mm_storeu_si128(reinterpret_cast<__m128i*>(e_out + v),
+                                     _mm_shuffle_epi8(run, shuffle));
+                }
             if constexpr (kKeepIndex)
             {
                 const __m128i idx = _mm_add_epi32(_mm_set1_epi32(static_cast<int>(j)), lane_index);
