@@ -1272,13 +1272,10 @@ TEST(RangeAdaptiveIntervals, EachHeightTakesTheGapOfTheBeamsAroundIt)
 
 // A pole astride the edge between pillars (20, 0) and (20, 1), seen first from the side of
 // (20, 0) (its points there, 3 cm from the edge), then from the other side: its points all in
-// (20, 1). The half in (20, 0) is still there. The beams that judge what stands above a
-// pillar's ground are those toward where it was seen in the pillar (Pillar::object_u,
-// object_v), not toward the pillar's centre: there they meet the pole's other half across the
-// edge, 6 cm away, which vetoes; a surface 0.15 m past the edge is no longer in their way, and
-// a pole gone from both pillars is seen through. The beams toward the centre of (20, 0) pass
-// beside the pole and say nothing of it. Near a corner, gone is gone too.
-TEST(PillarEdge, APoleAstrideAnEdgeIsJudgedWhereItWasSeen)
+// (20, 1), while the beams toward the centre of (20, 0) pass beside it at its heights. The half
+// in (20, 0) is still there; only the surface seen at the edge says so
+// (Params::pillar_edge_margin). Near a corner, the pillar across the corner takes it too.
+TEST(PillarEdge, APoleAstrideAnEdgeKeepsTheHalfTheScanSawOnlyAcrossTheEdge)
 {
     struct Xy
     {
@@ -1286,10 +1283,11 @@ TEST(PillarEdge, APoleAstrideAnEdgeIsJudgedWhereItWasSeen)
     };
     // The pole seen at `first` twice, then at `later` (none: gone) four times; is it still
     // static at `first`?
-    auto poleStaticAfter = [](Xy first, std::optional<Xy> later)
+    auto poleStaticAfter = [](double margin, Xy first, std::optional<Xy> later)
     {
         Params prm;
         prm.sensor_from_scans = false;
+        prm.pillar_edge_margin = margin;
         PillarGrid grid(GridGeometry(), prm);
         const float ground = -1.7f;
         auto pole = [](Xy at, std::vector<float>& x, std::vector<float>& y, std::vector<float>& z)
@@ -1312,23 +1310,26 @@ TEST(PillarEdge, APoleAstrideAnEdgeIsJudgedWhereItWasSeen)
         {
             std::vector<float> x{20.5f}, y{0.5f}, z{ground};  // (20, 0) is hit: its ground
             if (later) pole(*later, x, y, z);
-            beamsToward(20.5, 0.5, -1.0, 0.5, 40.0, x, y, z);         // beside the pole
-            beamsToward(first.x, first.y, -1.0, 0.5, 40.0, x, y, z);  // where it was, beyond
+            beamsToward(20.5, 0.5, -1.0, 0.5, 40.0, x, y, z);  // beside the pole, 20 m beyond
             grid.insertScan({x.data(), y.data(), z.data(), x.size()});
         }
         EXPECT_TRUE(grid.isStatic(20.5, 0.5, ground));
         return grid.isStatic(first.x, first.y, -0.5);
     };
     const Xy here{20.5f, 0.97f};
-    EXPECT_TRUE(poleStaticAfter(here, Xy{20.5f, 1.03f})) << "its other half, 6 cm away";
-    EXPECT_FALSE(poleStaticAfter(here, Xy{20.5f, 1.15f})) << "a surface 0.18 m away";
-    EXPECT_FALSE(poleStaticAfter(here, std::nullopt)) << "gone";
-    EXPECT_FALSE(poleStaticAfter(Xy{20.97f, 0.97f}, std::nullopt)) << "gone from the corner";
+    EXPECT_FALSE(poleStaticAfter(0.0, here, Xy{20.5f, 1.03f})) << "without the margin";
+    EXPECT_TRUE(poleStaticAfter(0.1, here, Xy{20.5f, 1.03f})) << "seen 3 cm past the edge";
+    EXPECT_FALSE(poleStaticAfter(0.1, here, Xy{20.5f, 1.15f})) << "a surface 0.15 m past it";
+    EXPECT_FALSE(poleStaticAfter(0.1, here, std::nullopt)) << "gone: nothing at the edge";
+    const Xy corner{20.97f, 0.97f};
+    EXPECT_FALSE(poleStaticAfter(0.0, corner, Xy{21.03f, 1.03f}));
+    EXPECT_TRUE(poleStaticAfter(0.1, corner, Xy{21.03f, 1.03f})) << "across the corner";
 }
 
-// What stands off the centre of its pillar (a box on a post, in one corner) is judged by the
-// beams toward where it was seen: beams that pass the pillar's free part, toward its centre,
-// leave it as it is; those toward the box, which meet nothing there now, show it gone.
+// What stands off the centre of its pillar (a box on a post, in one corner), held static
+// firmly, is judged by the beams toward where it was seen: beams that pass the pillar's free
+// part, toward its centre, leave it as it is; those toward the box, which meet nothing there
+// now, show it gone.
 TEST(ObjectAxis, WhatStandsOffThePillarsCentreIsJudgedByTheBeamsTowardIt)
 {
     auto boxStaticAfter = [](bool toward_box)
@@ -1338,8 +1339,8 @@ TEST(ObjectAxis, WhatStandsOffThePillarsCentreIsJudgedByTheBeamsTowardIt)
         PillarGrid grid(GridGeometry(), prm);
         const float ground = -1.7f;
         // A box 0.7 to 1.4 m above the ground, its face at x = 20.75 between y = 0.75 and
-        // 0.95, in the corner of pillar (20, 0).
-        for (int s = 0; s < 3; ++s)
+        // 0.95, in the corner of pillar (20, 0), seen until the map holds it at p_max.
+        for (int s = 0; s < 10; ++s)
         {
             std::vector<float> x{20.3f}, y{0.3f}, z{ground};
             for (const float by : {0.75f, 0.85f, 0.95f})
@@ -1352,20 +1353,18 @@ TEST(ObjectAxis, WhatStandsOffThePillarsCentreIsJudgedByTheBeamsTowardIt)
             grid.insertScan({x.data(), y.data(), z.data(), x.size()});
         }
         EXPECT_TRUE(grid.isStatic(20.75, 0.85, -0.6));
-        for (int s = 0; s < 4; ++s)
+        for (int s = 0; s < 8; ++s)  // a miss a scan takes p_max under 0.5 in 7
         {
-            std::vector<float> x{20.3f}, y{0.3f}, z{ground};  // (20, 0) is hit: its ground
-            if (toward_box)
-                beamsToward(20.75, 0.85, -1.0, -0.3, 40.0, x, y, z);
-            else
-                beamsToward(20.5, 0.5, -1.0, -0.3, 40.0, x, y, z);
+            std::vector<float> x{20.3f}, y{0.3f}, z{ground};    // (20, 0) is hit: its ground
+            beamsToward(20.5, 0.5, -1.0, -0.3, 40.0, x, y, z);  // through the free part
+            if (toward_box) beamsToward(20.75, 0.85, -1.0, -0.3, 40.0, x, y, z);
             grid.insertScan({x.data(), y.data(), z.data(), x.size()});
         }
         EXPECT_TRUE(grid.isStatic(20.3, 0.3, ground));
         return grid.isStatic(20.75, 0.85, -0.6);
     };
     EXPECT_TRUE(boxStaticAfter(false)) << "beams through the pillar's free part, at its centre";
-    EXPECT_FALSE(boxStaticAfter(true)) << "beams through where the box stood";
+    EXPECT_FALSE(boxStaticAfter(true)) << "and beams through where the box stood";
 }
 
 // The margin is a distance inside a pillar: under half of it, or every point would be near

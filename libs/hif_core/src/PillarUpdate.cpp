@@ -135,7 +135,8 @@ void PillarUpdater::update(Pillar& g, const Span* t, std::size_t nt, int32_t cei
                 // and 08 at 16 rings 0.2-0.3 DA, doc/algorithm.md).
                 const Span core = gate->floorOrObject(gi, 0, i, lo, hi);
                 gate->passedCells(lo, hi, {std::max(core.lo, lo), std::min(core.hi, hi)}, passed_,
-                                  gate->skyFor(gi[i].logodds), i > 0);
+                                  gate->skyFor(gi[i].logodds),
+                                  i > 0 && model.heldFirmly(gi[i].logodds));
                 int32_t at = lo;
                 for (const Span& s : passed_)
                 {

@@ -62,6 +62,9 @@ struct LogOddsModel
      *  (PillarGrid::pEmptyInit(): it depends on the sensor model too). */
     [[nodiscard]] static LogOddsModel of(const PillarGrid& grid);
     [[nodiscard]] float clamp(float l) const { return l < lmin ? lmin : (l > lmax ? lmax : l); }
+    /** Whether an interval of log-odds `l` is held static firmly: within two misses of p_max
+     *  (seen at the top, and missed at most twice since). */
+    [[nodiscard]] bool heldFirmly(float l) const { return l >= lmax + 2.0f * miss; }
     /** Whether a miss (Eq. 13, clipped by Eq. 17-18) changes log-odds `l`: not at p_min, so
      *  where it does not, nobody needs to ask whether a beam passed. */
     [[nodiscard]] bool missChanges(float l) const { return clamp(l + miss) != l; }
