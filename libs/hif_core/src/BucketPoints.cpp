@@ -90,8 +90,8 @@ void objectSightings(const PillarGrid& grid, ScanBuckets& out)
         {
             if (int64_t{out.cells[k]} - low <= step) continue;
             const auto code = static_cast<uint32_t>(out.tmp_code[k]);
-            o.sum_u += (static_cast<float>((code >> kPlaceShift) & 255u) + 0.5f) / 256.0f;
-            o.sum_v += (static_cast<float>((code >> (kPlaceShift + 8)) & 255u) + 0.5f) / 256.0f;
+            o.sum_u += static_cast<float>(Pillar::placeOf((code >> kPlaceShift) & 255u));
+            o.sum_v += static_cast<float>(Pillar::placeOf((code >> (kPlaceShift + 8)) & 255u));
             ++o.count;
         }
     }
@@ -107,9 +107,9 @@ void bucketPoints(const PillarGrid& grid, const PointsView& pts, const Eigen::Is
     out.tmp_m.resize(pts.size);
     out.tmp_n.resize(pts.size);
     out.tmp_z.resize(pts.size);
-    // Each point's edge code (EdgeBits): with the gate, for the cells of its pillar where what
-    // stands above the ground was seen (ScanBuckets::object_at); with
-    // Params::pillar_edge_margin, for the edge cells too.
+    // Each point's edge code (EdgeBits): with the gate, for its place in its pillar (where what
+    // stands above the ground was seen, ScanBuckets::object_at); with Params::pillar_edge_margin,
+    // for the edge cells too.
     const Params& prm = grid.params();
     const bool codes = !keep_index && prm.miss_needs_beam;
     const bool edges = codes && prm.pillar_edge_margin > 0.0;

@@ -241,10 +241,10 @@ struct BeamGate
      *  touching goes on above it. */
     int32_t floor_slope_cells = 0;
     /** The axis (as `base`) through where in the pillar what stands above its ground was seen
-     *  (Pillar::object_u, object_v), for the intervals above its floor (passedCells() with
-     *  `object`), when `object_axis_set`. The gate reads the beams around one axis; through
-     *  the centre of a 1 m pillar, they pass its free part beside a pole, a trunk or the
-     *  corner of a box that stands off the centre, and would show it gone. */
+     *  (Pillar::object_u, object_v), for the intervals above its floor that the map holds
+     *  firmly (passedCells() with `object`), when `object_axis_set`. The gate reads the beams
+     * around one axis; through the centre of a 1 m pillar, they pass its free part beside a pole, a
+     * trunk or the corner of a box that stands off the centre, and would show it gone. */
     Eigen::Vector3d object_axis = Eigen::Vector3d::Zero();
     bool object_axis_set = false;
 
@@ -256,8 +256,8 @@ struct BeamGate
     {
         object_axis_set = pil.object_weight != 0;
         if (!object_axis_set) return;
-        const double x = geo.origin_x + (idx.m + (pil.object_u + 0.5) / 256.0) * geo.pillar_size;
-        const double y = geo.origin_y + (idx.n + (pil.object_v + 0.5) / 256.0) * geo.pillar_size;
+        const double x = geo.origin_x + (idx.m + Pillar::placeOf(pil.object_u)) * geo.pillar_size;
+        const double y = geo.origin_y + (idx.n + Pillar::placeOf(pil.object_v)) * geo.pillar_size;
         object_axis =
             world_to_sensor * Eigen::Vector3d(x - sensor.x(), y - sensor.y(), -sensor.z());
     }
@@ -416,7 +416,8 @@ struct BeamGate
      *  between those heights lies near the pillar (something is there: a veto). Without the
      *  heights of a surface seen at the pillar's edge (edge_spans): it may go on into the
      *  pillar where the beams toward its centre did not go. With `object` (an interval above
-     *  the floor, floorOrObject()), the beams are those around object_axis. */
+     *  the floor, floorOrObject(), that the map holds firmly), the beams are those around
+     *  object_axis. */
     void passedCells(int32_t lo, int32_t hi, Span core, std::vector<Span>& out, bool sky = false,
                      bool object = false) const
     {

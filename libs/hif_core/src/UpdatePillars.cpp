@@ -21,9 +21,8 @@ void addObjectSightings(Pillar& pil, const ScanBuckets::ObjectSightings& s)
 {
     if (s.count == 0) return;
     const double w = pil.object_weight, n = s.count;
-    const double u = pil.object_weight ? (pil.object_u + 0.5) / 256.0 : 0.0;
-    const double v = pil.object_weight ? (pil.object_v + 0.5) / 256.0 : 0.0;
-    const double mu = (u * w + s.sum_u) / (w + n), mv = (v * w + s.sum_v) / (w + n);
+    const double mu = (Pillar::placeOf(pil.object_u) * w + s.sum_u) / (w + n);
+    const double mv = (Pillar::placeOf(pil.object_v) * w + s.sum_v) / (w + n);
     pil.object_u = static_cast<uint8_t>(std::clamp(std::floor(mu * 256.0), 0.0, 255.0));
     pil.object_v = static_cast<uint8_t>(std::clamp(std::floor(mv * 256.0), 0.0, 255.0));
     pil.object_weight = static_cast<uint16_t>(std::min<double>(w + n, Pillar::kObjectSightings));

@@ -63,14 +63,18 @@ struct Pillar
     float logodds_empty = 0.0f;
     int32_t seen_top = std::numeric_limits<int32_t>::min();
     PassedCells passed;
-    /** Where in the pillar what stands above its ground was seen: the mean of its sightings
-     *  (ScanBuckets::object_at) as offsets from the pillar's low corner along m and n, in
-     *  1/256 of the pillar, over the last kObjectSightings of them (a few scans: it follows what
-     * stands there now) (`object_weight`; 0: nothing seen yet). The beams that judge what stands
-     * there are those toward this place (BeamGate::object_axis), not toward the pillar's centre. */
+    /** Where in the pillar what stands above its ground was seen: the mean of its last
+     *  kObjectSightings sightings (ScanBuckets::object_at; a few scans, so that it follows what
+     *  stands there now), as offsets from the pillar's low corner along m and n in steps of
+     *  1/256 of the pillar (placeOf()), and how many sightings the mean holds (0: none yet).
+     *  What the map holds there firmly is judged by the beams toward this place
+     *  (BeamGate::object_axis), not toward the pillar's centre. */
     uint8_t object_u = 0, object_v = 0;
     uint16_t object_weight = 0;
     static constexpr uint16_t kObjectSightings = 32;
+    /** The offset (a fraction of the pillar) of place step `q` (object_u, object_v): the
+     *  middle of the step. */
+    [[nodiscard]] static double placeOf(uint32_t q) { return (q + 0.5) / 256.0; }
     std::vector<Interval> intervals;
     friend bool operator==(const Pillar& a, const Pillar& b)
     {
