@@ -41,10 +41,10 @@ option(HIF_PRECOMPILE_HEADERS "Precompile the third-party headers of the targets
 set(HIF_PCH_CORE <algorithm> <array> <atomic> <cmath> <cstdint> <cstring> <limits> <memory>
   <optional> <string> <utility> <vector> <Eigen/Core> <Eigen/Geometry>)
 set(HIF_PCH_MRPT ${HIF_PCH_CORE} <fstream> <sstream> <stdexcept> <filesystem>
-  <mrpt/maps/CMetricMap.h> <mrpt/maps/CMultiMetricMap.h> <mrpt/maps/CPointsMap.h> <mrpt/maps/CSimplePointsMap.h>
-  <mrpt/maps/CPointsMapXYZI.h> <mrpt/obs/CObservationPointCloud.h> <mrpt/obs/CSensoryFrame.h>
-  <mrpt/poses/CPose3D.h> <mrpt/serialization/CArchive.h> <mrpt/config/CConfigFileBase.h>
-  <mrpt/config/CLoadableOptions.h>)
+  <mrpt/maps/CMetricMap.h> <mrpt/maps/CMultiMetricMap.h> <mrpt/maps/CPointsMap.h>
+  <mrpt/maps/CSimplePointsMap.h> <mrpt/maps/CPointsMapXYZI.h> <mrpt/obs/CObservationPointCloud.h>
+  <mrpt/obs/CSensoryFrame.h> <mrpt/poses/CPose3D.h> <mrpt/serialization/CArchive.h>
+  <mrpt/config/CConfigFileBase.h> <mrpt/config/CLoadableOptions.h>)
 function(hif_precompile_headers target kind)
   if(NOT HIF_PRECOMPILE_HEADERS)
     return()
