@@ -37,7 +37,8 @@ endfunction()
 # header of a target compiled with the same flags, as one with GCC is 100-200 MB on disk).
 # Only third-party headers: a change to hif's own headers rebuilds what includes them, as
 # before. A clean build -15 % (doc/testing.md, "Precompiled headers for the libraries").
-option(HIF_PRECOMPILE_HEADERS "Precompile the third-party headers of the targets with many sources" ON)
+option(HIF_PRECOMPILE_HEADERS
+  "Precompile the third-party headers of the targets with many sources" ON)
 set(HIF_PCH_CORE <algorithm> <array> <atomic> <cmath> <cstdint> <cstring> <limits> <memory>
   <optional> <string> <utility> <vector> <Eigen/Core> <Eigen/Geometry>)
 set(HIF_PCH_MRPT ${HIF_PCH_CORE} <fstream> <sstream> <stdexcept> <filesystem>
