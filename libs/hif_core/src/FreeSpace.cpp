@@ -370,6 +370,36 @@ bool facesBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& m
     return cell && facesBeams(own, *cell, margin);
 }
 
+/** Half the largest range step from world point `p` to its nearest returns on its surface
+ *  (within the margin) in the image of scan `own` (the scan it was seen in): beside it in its
+ *  row (within a horizontal step of the sensor) and up and down its column (the next beams). A
+ *  beam half a spacing off the point's direction meets the surface that much nearer or
+ *  farther, about: nothing on a walker's front, a few centimetres on a wall met obliquely. */
+double halfStep(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& margin)
+{
+    const auto cell = cellOf(own, p);
+    if (!cell) return 0.0;
+    const int cols = own.layout->cols;
+    const double m = margin.at(cell->d);
+    double step = 0.0;
+    auto take = [&](float f)
+    {
+        const double off = std::abs(static_cast<double>(f) - cell->d);
+        if (off <= m) step = std::max(step, off);
+    };
+    const int reach = stepColumns(cols, cell->c);
+    for (int dir = -1; dir <= 1; dir += 2)
+    {
+        float f = std::numeric_limits<float>::infinity();
+        for (int k = 1; k <= reach && !std::isfinite(f); ++k)
+            f = own.at(cell->r, wrapCol(cell->c + dir * k, cols));
+        take(f);
+        nextInColumn(own, cell->r, cell->c, dir, f);
+        take(f);
+    }
+    return 0.5 * step;
+}
+
 /** Returns of one column of scan `own`'s image placed along the azimuth of world point `p`,
  *  in the world frame: horizontal distance from the sensor and height, metres. */
 struct ColumnPlaces
@@ -883,23 +913,29 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
                 judges.back().image->prefetch(c->r, c->c);
         bool judged = false;
         // Whether a beam that returned `offset` from the point (within the margin `m` there)
-        // shows a steady drift's full size (see `steady` below): beyond the margin's share
-        // for range noise and pose error, half the margin at no distance. Where the point's
-        // own scan shows it on a surface facing the beams (facesBeams()), the margin's share
-        // per metre, for a neighbouring beam on a slanted surface, has nothing to cover: there
-        // a drift beyond the margin at no distance has its size (a slow walker 15 m away:
-        // 0.3 m instead of 0.45). Asked once per point, only for such offsets.
+        // shows a steady drift's full size (see `steady` below): beyond the margin less its
+        // share for range noise and pose error (half the margin at no distance). Where the
+        // point's own scan shows it on a surface that faces the beams (facesBeams()), the
+        // margin's share per metre, for a neighbouring beam on a slanted surface, has only the
+        // surface's own slope there to cover: a judge's beam toward the point may lie half a
+        // beam spacing off its direction, and meet the surface up to half the range step to
+        // the point's neighbouring returns on it nearer or farther (halfStep()). Beyond that
+        // and the noise share, a drift has its size (a slow walker 15 m away, its front flat
+        // to the beams: 0.15 m instead of 0.45). Asked once per point, only for such offsets.
         int facing = -1;  // not asked yet
         auto facesTheBeams = [&]
         {
             if (facing < 0) facing = facesBeams(ownJudge(), p_w, margin) ? 1 : 0;
             return facing == 1;
         };
+        double slope_step = -1.0;  // halfStep(), not asked yet
         auto driftSize = [&](double offset, double m)
         {
-            if (std::abs(offset) > m - 0.5 * margin.base) return true;
-            if (std::abs(offset) <= margin.base) return false;
-            return facesTheBeams();
+            const double noise = 0.5 * margin.base;
+            if (std::abs(offset) > m - noise) return true;
+            if (std::abs(offset) <= noise || !facesTheBeams()) return false;
+            if (slope_step < 0.0) slope_step = halfStep(ownJudge(), p_w, margin);
+            return std::abs(offset) > noise + slope_step;
         };
         // Where the point's surface goes on in its own scan (surfaceAround()), asked at most
         // once per point, where a judge's beam that passed it saw through (below). On a
