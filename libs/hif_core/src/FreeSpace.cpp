@@ -335,19 +335,24 @@ int stepColumns(int cols, int c)
  *  returns its row at one range, but the next ring lands beyond the margin: no surface in the
  *  column. With `row_only`, a surface seen by one ring (nothing on it up or down the column)
  *  faces the beams when its row does so (a return up or down the column that lies on it still
- *  must). */
+ *  must). Where it faces them, `largest_step` (if given) gets the largest range step from the
+ *  point to those of the returns that lie on its surface (0 for none): a beam half a spacing
+ *  off the point's direction meets the surface about half of it nearer or farther (nothing on a
+ *  walker's front, a few centimetres on a wall met obliquely). */
 bool facesBeams(const Judge& own, const ImageCell& cell, const RangeMargin& margin,
-                bool row_only = false)
+                bool row_only = false, double* largest_step = nullptr)
 {
     const int cols = own.layout->cols;
     const double m = margin.at(cell.d);
     bool in_row = false, in_column = false;
+    double step = 0.0;
     // Whether the return at `f` leaves the surface facing the beams; `on` if it lies on it.
     auto check = [&](float f, bool& on)
     {
         const double off = std::abs(static_cast<double>(f) - cell.d);
         if (!(off <= m)) return true;  // another surface, or none
         on = true;
+        step = std::max(step, off);
         return off <= 0.5 * margin.base;
     };
     const int reach = stepColumns(cols, cell.c);
@@ -360,44 +365,16 @@ bool facesBeams(const Judge& own, const ImageCell& cell, const RangeMargin& marg
         nextInColumn(own, cell.r, cell.c, dir, f);
         if (!check(f, in_column)) return false;
     }
+    if (largest_step) *largest_step = step;
     return in_row && (in_column || row_only);
 }
 
 /** facesBeams() for world point `p`, in its cell of `own`'s image (false outside it). */
-bool facesBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& margin)
+bool facesBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& margin,
+                double* largest_step = nullptr)
 {
     const auto cell = cellOf(own, p);
-    return cell && facesBeams(own, *cell, margin);
-}
-
-/** Half the largest range step from world point `p` to its nearest returns on its surface
- *  (within the margin) in the image of scan `own` (the scan it was seen in): beside it in its
- *  row (within a horizontal step of the sensor) and up and down its column (the next beams). A
- *  beam half a spacing off the point's direction meets the surface that much nearer or
- *  farther, about: nothing on a walker's front, a few centimetres on a wall met obliquely. */
-double halfStep(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& margin)
-{
-    const auto cell = cellOf(own, p);
-    if (!cell) return 0.0;
-    const int cols = own.layout->cols;
-    const double m = margin.at(cell->d);
-    double step = 0.0;
-    auto take = [&](float f)
-    {
-        const double off = std::abs(static_cast<double>(f) - cell->d);
-        if (off <= m) step = std::max(step, off);
-    };
-    const int reach = stepColumns(cols, cell->c);
-    for (int dir = -1; dir <= 1; dir += 2)
-    {
-        float f = std::numeric_limits<float>::infinity();
-        for (int k = 1; k <= reach && !std::isfinite(f); ++k)
-            f = own.at(cell->r, wrapCol(cell->c + dir * k, cols));
-        take(f);
-        nextInColumn(own, cell->r, cell->c, dir, f);
-        take(f);
-    }
-    return 0.5 * step;
+    return cell && facesBeams(own, *cell, margin, false, largest_step);
 }
 
 /** Returns of one column of scan `own`'s image placed along the azimuth of world point `p`,
@@ -919,23 +896,23 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         // margin's share per metre, for a neighbouring beam on a slanted surface, has only the
         // surface's own slope there to cover: a judge's beam toward the point may lie half a
         // beam spacing off its direction, and meet the surface up to half the range step to
-        // the point's neighbouring returns on it nearer or farther (halfStep()). Beyond that
-        // and the noise share, a drift has its size (a slow walker 15 m away, its front flat
-        // to the beams: 0.15 m instead of 0.45). Asked once per point, only for such offsets.
-        int facing = -1;  // not asked yet
+        // the point's neighbouring returns on it nearer or farther (facesBeams()'s largest
+        // step). Beyond that and the noise share, a drift has its size (a slow walker 15 m
+        // away, its front flat to the beams: 0.15 m instead of 0.45). Asked once per point,
+        // only for such offsets.
+        int facing = -1;            // not asked yet
+        double largest_step = 0.0;  // where it faces them
         auto facesTheBeams = [&]
         {
-            if (facing < 0) facing = facesBeams(ownJudge(), p_w, margin) ? 1 : 0;
+            if (facing < 0) facing = facesBeams(ownJudge(), p_w, margin, &largest_step) ? 1 : 0;
             return facing == 1;
         };
-        double slope_step = -1.0;  // halfStep(), not asked yet
         auto driftSize = [&](double offset, double m)
         {
             const double noise = 0.5 * margin.base;
             if (std::abs(offset) > m - noise) return true;
-            if (std::abs(offset) <= noise || !facesTheBeams()) return false;
-            if (slope_step < 0.0) slope_step = halfStep(ownJudge(), p_w, margin);
-            return std::abs(offset) > noise + slope_step;
+            return std::abs(offset) > noise && facesTheBeams() &&
+                   std::abs(offset) > noise + 0.5 * largest_step;
         };
         // Where the point's surface goes on in its own scan (surfaceAround()), asked at most
         // once per point, where a judge's beam that passed it saw through (below). On a

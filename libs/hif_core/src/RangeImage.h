@@ -243,8 +243,8 @@ struct BeamGate
     /** The axis (as `base`) through where in the pillar what stands above its ground was seen
      *  (Pillar::object_u, object_v), for the intervals above its floor that the map holds
      *  firmly (passedCells() with `object`), when `object_axis_set`. The gate reads the beams
-     * around one axis; through the centre of a 1 m pillar, they pass its free part beside a pole, a
-     * trunk or the corner of a box that stands off the centre, and would show it gone. */
+     *  around one axis; through the centre of a 1 m pillar, they pass its free part beside a
+     *  pole, a trunk or the corner of a box that stands off the centre, and would show it gone. */
     Eigen::Vector3d object_axis = Eigen::Vector3d::Zero();
     bool object_axis_set = false;
 
