@@ -338,13 +338,20 @@ int stepColumns(int cols, int c)
  *  must). Where it faces them, `largest_step` (if given) gets the largest range step from the
  *  point to those of the returns that lie on its surface (0 for none): a beam half a spacing
  *  off the point's direction meets the surface about half of it nearer or farther (nothing on a
- *  walker's front, a few centimetres on a wall met obliquely). */
+ *  walker's front, a few centimetres on a wall met obliquely). With `narrow`, a thing one beam
+ *  wide that stands out in front of its row also faces the beams where its column does: the
+ *  nearest returns beside it in its row lie behind it by more than the margin, or there are
+ *  none (a leg, an arm, a head against what lies behind; not a corner, whose other face lies
+ *  beside it at its range or nearer). A beam of another scan a fraction of a cell off the
+ *  point's direction either meets the same thin thing, at the point's range to within the
+ *  thing's own depth, or passes beside it to what lies behind: never a slanted surface. */
 bool facesBeams(const Judge& own, const ImageCell& cell, const RangeMargin& margin,
-                bool row_only = false, double* largest_step = nullptr)
+                bool row_only = false, double* largest_step = nullptr, bool narrow = false)
 {
     const int cols = own.layout->cols;
     const double m = margin.at(cell.d);
     bool in_row = false, in_column = false;
+    bool stands_out = true;  // nothing beside it in its row at its range or nearer
     double step = 0.0;
     // Whether the return at `f` leaves the surface facing the beams; `on` if it lies on it.
     auto check = [&](float f, bool& on)
@@ -362,19 +369,20 @@ bool facesBeams(const Judge& own, const ImageCell& cell, const RangeMargin& marg
         for (int k = 1; k <= reach && !std::isfinite(f); ++k)
             f = own.at(cell.r, wrapCol(cell.c + dir * k, cols));
         if (!check(f, in_row)) return false;
+        if (std::isfinite(f) && static_cast<double>(f) - cell.d <= m) stands_out = false;
         nextInColumn(own, cell.r, cell.c, dir, f);
         if (!check(f, in_column)) return false;
     }
     if (largest_step) *largest_step = step;
-    return in_row && (in_column || row_only);
+    return (in_row || (narrow && stands_out && in_column)) && (in_column || row_only);
 }
 
 /** facesBeams() for world point `p`, in its cell of `own`'s image (false outside it). */
 bool facesBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& margin,
-                double* largest_step = nullptr)
+                double* largest_step = nullptr, bool narrow = false)
 {
     const auto cell = cellOf(own, p);
-    return cell && facesBeams(own, *cell, margin, false, largest_step);
+    return cell && facesBeams(own, *cell, margin, false, largest_step, narrow);
 }
 
 /** Returns of one column of scan `own`'s image placed along the azimuth of world point `p`,
@@ -860,7 +868,9 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // With `at_max` (its entry's interval held at p_max by the map, ScanBuckets::at_max),
     // nothing there came lately, and the walk for a place seen empty just before what stands
     // there is not made.
-    auto pointVerdict = [&](uint32_t i, bool sky, bool at_max)
+    // With `drift_only` (the middle of an entry's run, entryVerdict()), only a steady drift
+    // along the beams shows the point gone; every other verdict is Held.
+    auto pointVerdict = [&](uint32_t i, bool sky, bool at_max, bool drift_only = false)
     {
         TestScratch& here = scratch();
         std::vector<Seen>& seen = here.seen;
@@ -907,12 +917,35 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             if (facing < 0) facing = facesBeams(ownJudge(), p_w, margin, &largest_step) ? 1 : 0;
             return facing == 1;
         };
+        // facesTheBeams() for a drift's measure: a thing one beam wide in its row that stands
+        // out in front of it faces the beams by its column (facesBeams()'s `narrow`: a leg, an
+        // arm, a head; the edges of a walker's body, where the returns beside it in the row lie
+        // on what is behind). Another scan's beam that returned within the margin of such a
+        // point met the same thin thing, so its offset measures the thing's own motion. Not for
+        // the rules that read a beam that passed the point (a place seen empty just before,
+        // surfaceAt()): beside a thing one beam wide, a beam a fraction of a cell off passes it.
+        int facing_narrow = -1;    // not asked yet
+        double narrow_step = 0.0;  // where it faces them so
+        auto facesTheBeamsNarrow = [&]
+        {
+            if (facing_narrow < 0)
+            {
+                if (facing == 1)
+                {
+                    facing_narrow = 1;
+                    narrow_step = largest_step;
+                }
+                else
+                    facing_narrow = facesBeams(ownJudge(), p_w, margin, &narrow_step, true) ? 1 : 0;
+            }
+            return facing_narrow == 1;
+        };
         auto driftSize = [&](double offset, double m)
         {
             const double noise = 0.5 * margin.base;
             if (std::abs(offset) > m - noise) return true;
-            return std::abs(offset) > noise && facesTheBeams() &&
-                   std::abs(offset) > noise + 0.5 * largest_step;
+            return std::abs(offset) > noise && facesTheBeamsNarrow() &&
+                   std::abs(offset) > noise + 0.5 * narrow_step;
         };
         // Where the point's surface goes on in its own scan (surfaceAround()), asked at most
         // once per point, where a judge's beam that passed it saw through (below). On a
@@ -971,11 +1004,11 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         auto settlesSide = [&](std::size_t j) { return settles(j, gone); };
         const std::size_t settled_before = settledAt(self_pos, earlier, settlesSide);
         const BeamOffset at_before = settled_before ? at : BeamOffset{0.0, 0.0};
-        if (gone) return Verdict::Gone;
+        if (gone) return drift_only ? Verdict::Held : Verdict::Gone;
         unconfirmed = false;
         const std::size_t settled_after = settledAt(judges.size() - self_pos, later, settlesSide);
         const BeamOffset at_after = settled_after ? at : BeamOffset{0.0, 0.0};
-        if (gone) return Verdict::Gone;
+        if (gone) return drift_only ? Verdict::Held : Verdict::Gone;
         // A surface that moved along the beams between the two judges that settled the sides:
         // each saw it within the margin of the point, but the earlier one on one side of it and
         // the later one on the other (nearer, then farther: it went away; farther, then nearer:
@@ -986,7 +1019,8 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         // judge; where a beam a fraction of a cell off the point's direction lands far along the
         // surface (one met at grazing incidence, foliage), the offsets scatter as widely, so the
         // point must lie on a surface that faces the beams (facesBeams()).
-        if (settled_before > 0 && settled_after > 0 && at_before.offset * at_after.offset < 0.0 &&
+        if (!drift_only && settled_before > 0 && settled_after > 0 &&
+            at_before.offset * at_after.offset < 0.0 &&
             std::abs(at_after.offset - at_before.offset) >
                 std::max(at_before.margin, at_after.margin) &&
             facesTheBeams())
@@ -1024,8 +1058,8 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
             judged = true;
             return true;
         };
-        if (drifted(self_pos, earlier, settled_before) ||
-            drifted(judges.size() - self_pos, later, settled_after))
+        if (!drift_only && (drifted(self_pos, earlier, settled_before) ||
+                            drifted(judges.size() - self_pos, later, settled_after)))
             return Verdict::Gone;
         // A place seen empty just before what stands there now (or just after): walking out
         // from the nearest judge in time on one side, past those that see the point occupied
@@ -1052,7 +1086,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         // facesTheBeams() first: it reads a few cells of the point's own image, once per point,
         // where the walks read every judge out to the first that sees the place empty, all of
         // them for a point that is seen occupied throughout (most are).
-        if (!at_max && facesTheBeams() &&
+        if (!drift_only && !at_max && facesTheBeams() &&
             (emptyBefore(self_pos, earlier) || emptyBefore(judges.size() - self_pos, later)))
         {
             judged = true;
@@ -1099,13 +1133,14 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         // either way; one that cannot see the point ends the walk. Two judges suffice
         // (kSteadyJudgesFacing) where the point's own scan shows it on a surface that faces
         // the beams (facesBeams(): its neighbouring beams return within the margin's share for
-        // range noise and pose error): there a beam beside the point returns where one toward
-        // it would, so a second offset that grew beyond that share is the surface's own
-        // motion, not a slanted surface seen from a new place (online, the third scan of a
-        // walker coming along the line of sight has two scans of past).
+        // range noise and pose error), or on a thing one beam wide that stands out in front
+        // of its row (facesTheBeamsNarrow()): there a beam beside the point returns where one
+        // toward it would, or misses the thing, so a second offset that grew beyond that share
+        // is the surface's own motion, not a slanted surface seen from a new place (online,
+        // the third scan of a walker coming along the line of sight has two scans of past).
         // Asked last: facesBeams() reads the image around the point.
         auto enoughJudges = [&](std::size_t n)
-        { return n >= kSteadyJudges || (n >= kSteadyJudgesFacing && facesTheBeams()); };
+        { return n >= kSteadyJudges || (n >= kSteadyJudgesFacing && facesTheBeamsNarrow()); };
         auto steady = [&](std::size_t count, auto judgeAt)
         {
             double previous = 0.0;
@@ -1139,6 +1174,7 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         if ((mayDrift(settled_before, at_before) && steady(self_pos, earlier)) ||
             (mayDrift(settled_after, at_after) && steady(judges.size() - self_pos, later)))
             return Verdict::Gone;
+        if (drift_only) return Verdict::Held;
         // A surface that moved along the beams at a constant speed of more than the margin a
         // scan (a car driving ahead of the sensor, seen from behind): each scan before it saw
         // the point hidden by that surface, nearer by the same step for every scan further
@@ -1240,10 +1276,24 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         return a;
     };
     // An entry's verdict by pointVerdict(), with a judge's beams into open sky counted or not.
+    // Where neither end of its run is shown gone, the run's middle point is asked about a
+    // steady drift along the beams alone: the ends lie on the object's outline, where the
+    // rings above and below end a little sooner or later (their returns in the end's column
+    // fall off the object) and a rounded body meets the beams at grazing incidence, so an end
+    // seldom faces the beams by facesBeams() and a drift there needs three judges and most of
+    // the margin; the middle of a walker's back or a cyclist faces them, where two judges and
+    // the noise share are enough. The other rules read beams that
+    // passed the point, and the ends are where those show a mover (its edges); a middle point
+    // of foliage or a porous fence gives them more gaps to see through.
     auto entryVerdict = [&](uint32_t k, bool sky)
     {
         const bool at_max = scan.at_max[k] != 0;
-        return runVerdict(k, [&](uint32_t i) { return pointVerdict(i, sky, at_max); });
+        const Verdict v = runVerdict(k, [&](uint32_t i) { return pointVerdict(i, sky, at_max); });
+        const uint32_t first = scan.index[k], last = lastOfRun(first);
+        if (v == Verdict::Gone || last - first < 2) return v;
+        return pointVerdict(first + (last - first) / 2, sky, at_max, true) == Verdict::Gone
+                   ? Verdict::Gone
+                   : v;
     };
     auto verdict = [&](uint32_t k) { return entryVerdict(k, false); };
     // verdict(), with a judge's beams into open sky counted where the entry is new
