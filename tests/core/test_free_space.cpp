@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <optional>
 #include <random>
@@ -938,6 +939,21 @@ TEST(FreeSpaceTest, OnlineTwoPastScansShowAWalkerFacingTheBeamsDrifting)
     }
 }
 
+/** Online, the mover (kPerson) of each scan `ks` of `per_scan` (more than `min_points` points)
+ *  removed 90 % or more with the free-space test, none of it by the map alone. */
+void expectTheMoverShownIn(const std::vector<WithAndWithout>& per_scan,
+                           std::initializer_list<std::size_t> ks, std::size_t min_points)
+{
+    for (const std::size_t k : ks)
+    {
+        SCOPED_TRACE("scan " + std::to_string(k));
+        ASSERT_LT(k, per_scan.size());
+        EXPECT_GT(per_scan[k].with.n[kPerson], min_points);
+        EXPECT_EQ(per_scan[k].without.removed[kPerson], 0u);
+        EXPECT_GE(per_scan[k].with.pct(kPerson), 90.0);
+    }
+}
+
 // Online, the same person at half that pace, 0.08 m per scan (0.8 m/s): the past's beams toward
 // a point of the person's front land on it again 0.08 and 0.16 m beyond the point in the third
 // scan, 0.08 to 0.24 m in the fourth. The front is flat to the beams (its neighbouring returns
@@ -953,13 +969,7 @@ TEST(FreeSpaceTest, OnlineASlowWalkerFlatToTheBeamsIsShownOnceItsDriftPassesTheN
     // Measured: the third and fourth scans' person 100 % each (none with the margin's base as
     // the size, which shows it from the fifth scan on), the clip's 85.0 % (65.2 %); the map
     // alone none of those two scans' (4.7 % of the clip's).
-    for (const std::size_t k : {std::size_t{2}, std::size_t{3}})
-    {
-        SCOPED_TRACE("scan " + std::to_string(k));
-        EXPECT_GT(per_scan[k].with.n[kPerson], 100u);
-        EXPECT_EQ(per_scan[k].without.removed[kPerson], 0u);
-        EXPECT_GE(per_scan[k].with.pct(kPerson), 90.0);
-    }
+    expectTheMoverShownIn(per_scan, {2, 3}, 100);
     for (const What w : {kGround, kWall})
     {
         EXPECT_GT(all.with.n[w], 1000u);
@@ -1023,13 +1033,7 @@ TEST(FreeSpaceTest, OnlineAThingOneBeamWideIsShownByItsDrift)
     // Measured: the third and fourth scans' post all removed (none where a thing one beam wide
     // did not face the beams: three judges and most of the margin), 79.9 % of the clip's (the
     // map alone 18.9 %).
-    for (const std::size_t k : {std::size_t{2}, std::size_t{3}})
-    {
-        SCOPED_TRACE("scan " + std::to_string(k));
-        EXPECT_GT(per_scan[k].with.n[kPerson], 12u);
-        EXPECT_EQ(per_scan[k].without.removed[kPerson], 0u);
-        EXPECT_GE(per_scan[k].with.pct(kPerson), 90.0);
-    }
+    expectTheMoverShownIn(per_scan, {2, 3}, 12);
     EXPECT_GT(all.with.n[kPole], 150u);
     for (const What w : {kGround, kWall, kPole})
         EXPECT_EQ(all.with.removed[w], all.without.removed[w]) << "kind " << int(w);
@@ -1048,10 +1052,7 @@ TEST(FreeSpaceTest, OnlineTheMiddleOfARoundedWalkerShowsItsDriftBeforeItsEdges)
     ASSERT_EQ(per_scan.size(), scans.size());
     // Measured: the third scan's walker 90 % or more (none with the ends of the runs tested
     // alone), 79.2 % of the clip's (none by the map alone).
-    const Removed& third = per_scan[2].with;
-    EXPECT_GT(third.n[kPerson], 100u);
-    EXPECT_EQ(per_scan[2].without.removed[kPerson], 0u);
-    EXPECT_GE(third.pct(kPerson), 90.0);
+    expectTheMoverShownIn(per_scan, {2}, 100);
     for (const What w : {kGround, kWall})
     {
         EXPECT_GT(all.with.n[w], 1000u);
