@@ -104,7 +104,9 @@ TEST(Walkers, WalkersBesideFoliageAreRemovedAndTheFoliageKept)
 // People walking towards the sensor or away from it, within 15 degrees of its line of sight
 // (issue 23's hard case): the beams through where a person was land on the person again, a
 // little nearer or farther, so fewer are removed than of the people crossing the view. The floors
-// guard today's figures (person DA 95.9 and 81.2 offline, 72.3 and 61.5 online, 2026-12-06; 95.9
+// guard today's figures (person DA 96.9 and 87.2 offline, 78.8 and 68.9 online, 2026-12-07, with
+// a thing one beam wide facing the beams for a drift's measure and the middle of each run asked
+// about a drift; 95.9 and 81.2 offline, 72.3 and 61.5 online, 2026-12-06; 95.9
 // and 80.4 offline before a surface seen nearer before and farther after counted as moved; earlier
 // 95.5 and 76.8 offline, 68.3 and 59.6 online; 95.5 and 73.7,
 // 68.3 and 58.3 before the steady drift read the beam nearest each point's elevation; 94.2 and
@@ -164,8 +166,8 @@ TEST(Walkers, WalkersAlongTheLineOfSightAreRemovedInPart)
             EXPECT_GE((*s)["total"]["SA"].get<double>(), 99.5);
             EXPECT_GT((*s)["per_moving_class"]["moving-person"]["dynamic_total"].get<int>(), 3000);
         }
-        EXPECT_GE(offline["per_moving_class"]["moving-person"]["DA"].get<double>(), 75.0);
-        EXPECT_GE(online["per_moving_class"]["moving-person"]["DA"].get<double>(), 55.0);
+        EXPECT_GE(offline["per_moving_class"]["moving-person"]["DA"].get<double>(), 85.0);
+        EXPECT_GE(online["per_moving_class"]["moving-person"]["DA"].get<double>(), 65.0);
         EXPECT_LT(paper["per_moving_class"]["moving-person"]["DA"].get<double>(), 40.0);
     }
 }
