@@ -338,15 +338,29 @@ int stepColumns(int cols, int c)
  *  must). Where it faces them, `largest_step` (if given) gets the largest range step from the
  *  point to those of the returns that lie on its surface (0 for none): a beam half a spacing
  *  off the point's direction meets the surface about half of it nearer or farther (nothing on a
- *  walker's front, a few centimetres on a wall met obliquely). With `narrow`, a thing one beam
- *  wide that stands out in front of its row also faces the beams where its column does: the
- *  nearest returns beside it in its row lie behind it by more than the margin, or there are
- *  none (a leg, an arm, a head against what lies behind; not a corner, whose other face lies
- *  beside it at its range or nearer). A beam of another scan a fraction of a cell off the
- *  point's direction either meets the same thin thing, at the point's range to within the
- *  thing's own depth, or passes beside it to what lies behind: never a slanted surface. */
+ *  walker's front, a few centimetres on a wall met obliquely). */
 bool facesBeams(const Judge& own, const ImageCell& cell, const RangeMargin& margin,
-                bool row_only = false, double* largest_step = nullptr, bool narrow = false)
+                bool row_only = false, double* largest_step = nullptr);
+
+/** How the point in `cell` of scan `own`'s image faces its beams (facingOf()). */
+enum class Facing : uint8_t
+{
+    No,
+    /** A thing one beam wide that stands out in front of its row faces the beams where its
+     *  column does: the nearest returns beside it in its row lie behind it by more than the
+     *  margin, or there are none (a leg, an arm, a head against what lies behind; not a
+     *  corner, whose other face lies beside it at its range or nearer). A beam of another scan
+     *  a fraction of a cell off the point's direction either meets the same thin thing, at the
+     *  point's range to within the thing's own depth, or passes beside it to what lies behind:
+     *  never a slanted surface. */
+    OneBeamWide,
+    Yes  ///< facesBeams()
+};
+
+/** facesBeams(), telling a thing one beam wide (Facing::OneBeamWide) from what does not face
+ *  the beams; `largest_step` as there, for either. */
+Facing facingOf(const Judge& own, const ImageCell& cell, const RangeMargin& margin, bool row_only,
+                double* largest_step)
 {
     const int cols = own.layout->cols;
     const double m = margin.at(cell.d);
@@ -368,21 +382,35 @@ bool facesBeams(const Judge& own, const ImageCell& cell, const RangeMargin& marg
         float f = std::numeric_limits<float>::infinity();
         for (int k = 1; k <= reach && !std::isfinite(f); ++k)
             f = own.at(cell.r, wrapCol(cell.c + dir * k, cols));
-        if (!check(f, in_row)) return false;
+        if (!check(f, in_row)) return Facing::No;
         if (std::isfinite(f) && static_cast<double>(f) - cell.d <= m) stands_out = false;
         nextInColumn(own, cell.r, cell.c, dir, f);
-        if (!check(f, in_column)) return false;
+        if (!check(f, in_column)) return Facing::No;
     }
     if (largest_step) *largest_step = step;
-    return (in_row || (narrow && stands_out && in_column)) && (in_column || row_only);
+    if (!in_column && !row_only) return Facing::No;
+    if (in_row) return Facing::Yes;
+    return stands_out && in_column ? Facing::OneBeamWide : Facing::No;
+}
+
+bool facesBeams(const Judge& own, const ImageCell& cell, const RangeMargin& margin, bool row_only,
+                double* largest_step)
+{
+    return facingOf(own, cell, margin, row_only, largest_step) == Facing::Yes;
+}
+
+/** facingOf() for world point `p`, in its cell of `own`'s image (Facing::No outside it). */
+Facing facingOf(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& margin,
+                double* largest_step)
+{
+    const auto cell = cellOf(own, p);
+    return cell ? facingOf(own, *cell, margin, false, largest_step) : Facing::No;
 }
 
 /** facesBeams() for world point `p`, in its cell of `own`'s image (false outside it). */
-bool facesBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& margin,
-                double* largest_step = nullptr, bool narrow = false)
+bool facesBeams(const Judge& own, const Eigen::Vector3d& p, const RangeMargin& margin)
 {
-    const auto cell = cellOf(own, p);
-    return cell && facesBeams(own, *cell, margin, false, largest_step, narrow);
+    return facingOf(own, p, margin, nullptr) == Facing::Yes;
 }
 
 /** Returns of one column of scan `own`'s image placed along the azimuth of world point `p`,
@@ -910,42 +938,28 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         // step). Beyond that and the noise share, a drift has its size (a slow walker 15 m
         // away, its front flat to the beams: 0.15 m instead of 0.45). Asked once per point,
         // only for such offsets.
-        int facing = -1;            // not asked yet
-        double largest_step = 0.0;  // where it faces them
-        auto facesTheBeams = [&]
+        std::optional<Facing> facing;  // not asked yet
+        double largest_step = 0.0;     // where it faces them
+        auto facingHere = [&]
         {
-            if (facing < 0) facing = facesBeams(ownJudge(), p_w, margin, &largest_step) ? 1 : 0;
-            return facing == 1;
+            if (!facing) facing = facingOf(ownJudge(), p_w, margin, &largest_step);
+            return *facing;
         };
+        auto facesTheBeams = [&] { return facingHere() == Facing::Yes; };
         // facesTheBeams() for a drift's measure: a thing one beam wide in its row that stands
-        // out in front of it faces the beams by its column (facesBeams()'s `narrow`: a leg, an
+        // out in front of it faces the beams by its column (Facing::OneBeamWide: a leg, an
         // arm, a head; the edges of a walker's body, where the returns beside it in the row lie
         // on what is behind). Another scan's beam that returned within the margin of such a
         // point met the same thin thing, so its offset measures the thing's own motion. Not for
         // the rules that read a beam that passed the point (a place seen empty just before,
         // surfaceAt()): beside a thing one beam wide, a beam a fraction of a cell off passes it.
-        int facing_narrow = -1;    // not asked yet
-        double narrow_step = 0.0;  // where it faces them so
-        auto facesTheBeamsNarrow = [&]
-        {
-            if (facing_narrow < 0)
-            {
-                if (facing == 1)
-                {
-                    facing_narrow = 1;
-                    narrow_step = largest_step;
-                }
-                else
-                    facing_narrow = facesBeams(ownJudge(), p_w, margin, &narrow_step, true) ? 1 : 0;
-            }
-            return facing_narrow == 1;
-        };
+        auto facesTheBeamsForDrift = [&] { return facingHere() != Facing::No; };
         auto driftSize = [&](double offset, double m)
         {
             const double noise = 0.5 * margin.base;
             if (std::abs(offset) > m - noise) return true;
-            return std::abs(offset) > noise && facesTheBeamsNarrow() &&
-                   std::abs(offset) > noise + 0.5 * narrow_step;
+            return std::abs(offset) > noise && facesTheBeamsForDrift() &&
+                   std::abs(offset) > noise + 0.5 * largest_step;
         };
         // Where the point's surface goes on in its own scan (surfaceAround()), asked at most
         // once per point, where a judge's beam that passed it saw through (below). On a
@@ -1134,13 +1148,13 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         // (kSteadyJudgesFacing) where the point's own scan shows it on a surface that faces
         // the beams (facesBeams(): its neighbouring beams return within the margin's share for
         // range noise and pose error), or on a thing one beam wide that stands out in front
-        // of its row (facesTheBeamsNarrow()): there a beam beside the point returns where one
+        // of its row (facesTheBeamsForDrift()): there a beam beside the point returns where one
         // toward it would, or misses the thing, so a second offset that grew beyond that share
         // is the surface's own motion, not a slanted surface seen from a new place (online,
         // the third scan of a walker coming along the line of sight has two scans of past).
         // Asked last: facesBeams() reads the image around the point.
         auto enoughJudges = [&](std::size_t n)
-        { return n >= kSteadyJudges || (n >= kSteadyJudgesFacing && facesTheBeamsNarrow()); };
+        { return n >= kSteadyJudges || (n >= kSteadyJudgesFacing && facesTheBeamsForDrift()); };
         auto steady = [&](std::size_t count, auto judgeAt)
         {
             double previous = 0.0;
@@ -1282,9 +1296,9 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     // fall off the object) and a rounded body meets the beams at grazing incidence, so an end
     // seldom faces the beams by facesBeams() and a drift there needs three judges and most of
     // the margin; the middle of a walker's back or a cyclist faces them, where two judges and
-    // the noise share are enough. The other rules read beams that
-    // passed the point, and the ends are where those show a mover (its edges); a middle point
-    // of foliage or a porous fence gives them more gaps to see through.
+    // the noise share are enough. The other rules read beams that passed the point, and the
+    // ends are where those show a mover (its edges); a middle point of foliage or a porous
+    // fence gives them more gaps to see through.
     auto entryVerdict = [&](uint32_t k, bool sky)
     {
         const bool at_max = scan.at_max[k] != 0;
