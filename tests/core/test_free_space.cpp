@@ -76,6 +76,21 @@ void hitBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Eigen::Vec
     if (s0 <= s1) take(s0, w);
 }
 
+/** Where the ray o + s d enters a vertical cylinder of radius `radius` around (cx, cy) between
+ *  the ground and `height` above it: `take(s, w)`. */
+template <typename Take>
+void hitCylinder(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double cx, double cy,
+                 double radius, double height, What w, Take&& take)
+{
+    const double ox = o.x() - cx, oy = o.y() - cy;
+    const double a = d.x() * d.x() + d.y() * d.y(), b = 2 * (ox * d.x() + oy * d.y());
+    const double disc = b * b - 4 * a * (ox * ox + oy * oy - radius * radius);
+    if (a <= 0 || disc < 0) return;
+    const double s = (-b - std::sqrt(disc)) / (2 * a);
+    const double z = o.z() + s * d.z();
+    if (z >= kGroundZ && z <= kGroundZ + height) take(s, w);
+}
+
 /** First hit along the ray o + s d of the ground (z = kGroundZ + crossfall y), a wall across
  *  the view at x = `wall_x` and, if given, a person's box `person` (lo, hi corners), or
  *  kNothing; its range in `range`. */
@@ -120,16 +135,7 @@ What cast(const Eigen::Vector3d& o, const Eigen::Vector3d& d, int i, double& ran
         const Eigen::Vector3d p = o + s * d;
         if (std::abs(p.y()) < 20 && p.z() < kGroundZ + 3.0) take(s, kWall);
     }
-    {  // vertical cylinder
-        const double ox = o.x() - 12.0, oy = o.y() + 3.0;
-        const double a = d.x() * d.x() + d.y() * d.y(), b = 2 * (ox * d.x() + oy * d.y());
-        const double disc = b * b - 4 * a * (ox * ox + oy * oy - 0.01);
-        if (a > 0 && disc >= 0)
-        {
-            const double s = (-b - std::sqrt(disc)) / (2 * a);
-            if ((o + s * d).z() < kGroundZ + 3.0) take(s, kPole);
-        }
-    }
+    hitCylinder(o, d, 12.0, -3.0, 0.1, 3.0, kPole, take);
     hitBox(o, d, {14.8, person_y - 0.2, kGroundZ}, {15.2, person_y + 0.2, kGroundZ + 1.7}, kPerson,
            range, take);
     if (i != 5)
@@ -975,21 +981,6 @@ TEST(FreeSpaceTest, OnlineASlowWalkerFlatToTheBeamsIsShownOnceItsDriftPassesTheN
         EXPECT_GT(all.with.n[w], 1000u);
         EXPECT_EQ(all.with.removed[w], all.without.removed[w]) << "kind " << int(w);
     }
-}
-
-/** Where the ray o + s d enters a vertical cylinder of radius `radius` around (cx, cy) between
- *  the ground and `height` above it: `take(s, w)`. */
-template <typename Take>
-void hitCylinder(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double cx, double cy,
-                 double radius, double height, What w, Take&& take)
-{
-    const double ox = o.x() - cx, oy = o.y() - cy;
-    const double a = d.x() * d.x() + d.y() * d.y(), b = 2 * (ox * d.x() + oy * d.y());
-    const double disc = b * b - 4 * a * (ox * ox + oy * oy - radius * radius);
-    if (a <= 0 || disc < 0) return;
-    const double s = (-b - std::sqrt(disc)) / (2 * a);
-    const double z = o.z() + s * d.z();
-    if (z >= kGroundZ && z <= kGroundZ + height) take(s, w);
 }
 
 /** Ten scans of a standing sensor over the 60 degrees ahead: the ground, a wall at x = 25.5
