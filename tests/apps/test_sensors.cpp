@@ -64,6 +64,8 @@ TEST(HifSyntheticKitti, EachSensorScansWithItsOwnBeams)
     {
         std::string sensor;
         std::vector<double> beams;  ///< elevations, degrees (none: a rosette)
+        int columns = 0;            ///< a turn's firings
+        double drift = 0.0;         ///< of a column from one turn to the next
     };
     const auto evenly = [](int n, double top, double bottom)
     {
@@ -71,11 +73,14 @@ TEST(HifSyntheticKitti, EachSensorScansWithItsOwnBeams)
         for (int b = 0; b < n; ++b) e.push_back(top - (top - bottom) * b / (n - 1));
         return e;
     };
-    for (const Case& c : std::vector<Case>{{"hdl-64e", evenly(64, 2.0, -24.8)},
-                                           {"hdl-32e", evenly(32, 10.67, -30.67)},
-                                           {"vlp-16", evenly(16, 15.0, -15.0)},
-                                           {"os1-128", evenly(128, 22.5, -22.5)},
-                                           {"vlp-32c", hif::test::vlp32cBeams()},
+    // A Velodyne fires on its own clock, so a turn's azimuths lie a fraction of a column from
+    // the last turn's; an Ouster fires at fixed encoder positions.
+    constexpr double kDrift = 0.381966;
+    for (const Case& c : std::vector<Case>{{"hdl-64e", evenly(64, 2.0, -24.8), 1024, kDrift},
+                                           {"hdl-32e", evenly(32, 10.67, -30.67), 1800, kDrift},
+                                           {"vlp-16", evenly(16, 15.0, -15.0), 1800, kDrift},
+                                           {"os1-128", evenly(128, 22.5, -22.5), 1024, 0.0},
+                                           {"vlp-32c", hif::test::vlp32cBeams(), 1800, kDrift},
                                            {"mid-70", {}}})
     {
         SCOPED_TRACE(c.sensor);
@@ -94,9 +99,23 @@ TEST(HifSyntheticKitti, EachSensorScansWithItsOwnBeams)
         std::set<std::size_t> hit;  // beams with a return
         std::size_t off_beam = 0;
         double widest = 0;  // angle off the forward axis, degrees
-        for (const auto& scan : scans)
-            for (std::size_t i = 0; i < scan.size(); ++i)
+        // Each scan's firing phase, in columns: the fraction of a column past a whole one of
+        // every return's azimuth, the same for all (`phase`: the first's; `off_phase`: others).
+        std::array<double, 2> phase{};
+        std::size_t off_phase = 0;
+        for (std::size_t t = 0; t < scans.size(); ++t)
+            for (std::size_t i = 0; i < scans[t].size(); ++i)
             {
+                const auto& scan = scans[t];
+                if (c.columns > 0)
+                {
+                    const double col =
+                        std::atan2(double(scan.y[i]), double(scan.x[i])) * c.columns / (2.0 * M_PI);
+                    const double frac = col - std::floor(col);
+                    if (i == 0) phase[t] = frac;
+                    const double d = std::abs(frac - phase[t]);
+                    off_phase += std::min(d, 1.0 - d) > 1e-3;
+                }
                 const double rxy = std::hypot(scan.x[i], scan.y[i]);
                 const double range = std::hypot(rxy, scan.z[i]);
                 widest = std::max(widest, std::acos(scan.x[i] / range) * 180.0 / M_PI);
@@ -116,6 +135,9 @@ TEST(HifSyntheticKitti, EachSensorScansWithItsOwnBeams)
             EXPECT_GE(double(hit.size()), 0.75 * double(c.beams.size()))
                 << "most beams return something";
             EXPECT_GT(widest, 150.0) << "a spinning sensor sees all around";
+            EXPECT_EQ(off_phase, 0u) << "a turn fires at one phase";
+            const double moved = phase[1] - phase[0] - std::floor(phase[1] - phase[0]);
+            EXPECT_NEAR(std::min(moved, 1.0 - moved), c.drift, 1e-3);
         }
         else
         {
@@ -131,10 +153,11 @@ TEST(HifSyntheticKitti, EachSensorScansWithItsOwnBeams)
     }
 }
 
-// --foliage: vegetation that beams enter. A standing spinning sensor fires the same beams every
-// scan, so what a beam met in one scan it meets again in the next, a centimetre of range noise
-// aside: on solid things. In leaves it meets another leaf, or nothing, and returns from behind.
-// The scene's people are the same with and without foliage.
+// --foliage: vegetation that beams enter. A standing spinning sensor fires nearly the same beams
+// every scan (a third of a column aside), so what a beam met in one scan it meets again in the
+// next, a centimetre of range noise aside: on solid things, most of them. In leaves it meets
+// another leaf, or nothing, and returns from behind. The scene's people are the same with and
+// without foliage.
 TEST(HifSyntheticKitti, FoliageIsEnteredAndSeenThroughScanToScan)
 {
     const WorkDir work = workDir("foliage_" + std::to_string(getpid()));
@@ -149,7 +172,7 @@ TEST(HifSyntheticKitti, FoliageIsEnteredAndSeenThroughScanToScan)
     };
     struct Scan
     {
-        std::map<std::array<long, 3>, std::pair<double, uint32_t>> beams;  // direction -> hit
+        std::map<std::array<long, 2>, std::pair<double, uint32_t>> beams;  // ring, column -> hit
         std::set<uint32_t> people;                                         // instances
         std::size_t vegetation = 0, points = 0;
     };
@@ -163,10 +186,13 @@ TEST(HifSyntheticKitti, FoliageIsEnteredAndSeenThroughScanToScan)
         {
             const double r = std::sqrt(double(c.x[k]) * c.x[k] + double(c.y[k]) * c.y[k] +
                                        double(c.z[k]) * c.z[k]);
-            // Range noise moves a return along its beam: the direction names the beam.
-            const std::array<long, 3> key{std::lround(c.x[k] / r * 1e5),
-                                          std::lround(c.y[k] / r * 1e5),
-                                          std::lround(c.z[k] / r * 1e5)};
+            // Range noise moves a return along its beam: its elevation names the ring, its
+            // azimuth the column (the HDL-64E's 1024; a turn's firings drift by less than half
+            // a column from the first turn's, Sensor::column_drift).
+            const double column =
+                std::atan2(double(c.y[k]), double(c.x[k])) * 1024.0 / (2.0 * M_PI);
+            const std::array<long, 2> key{std::lround(c.z[k] / r * 1e4),
+                                          (std::lround(column) + 1024) % 1024};
             const uint32_t label = labels[k] & 0xFFFF;
             s.beams[key] = {r, label};
             if (label == 254) s.people.insert(labels[k] >> 16);
@@ -183,8 +209,9 @@ TEST(HifSyntheticKitti, FoliageIsEnteredAndSeenThroughScanToScan)
     // The HDL-64E's top beam (+2 degrees) meets few canopies; bushes and hedges line the sidewalks.
     EXPECT_LT(p0.vegetation, p0.points / 100);
     EXPECT_GT(l0.vegetation, l0.points / 20);
-    // The same beam in the next scan: on what is solid and still, the same surface within the
-    // noise; in leaves, another depth (a leaf farther or nearer) or what lies behind them.
+    // The same ring and column in the next scan (a third of a column aside): on what is solid
+    // and still, the same surface within the noise; in leaves, another depth (a leaf farther or
+    // nearer) or what lies behind them.
     std::size_t solid = 0, solid_moved = 0, leaves = 0, leaves_moved = 0, through = 0;
     for (const auto& [key, hit0] : l0.beams)
     {
@@ -205,7 +232,9 @@ TEST(HifSyntheticKitti, FoliageIsEnteredAndSeenThroughScanToScan)
         }
     }
     ASSERT_GT(leaves, 1000u);
-    EXPECT_EQ(solid_moved, 0u) << "of " << solid;
+    // Solid surfaces move only where a third of a column aside meets them at grazing incidence
+    // or past an edge (2.4 % here; none when every turn fired at the same azimuths).
+    EXPECT_LT(solid_moved, solid / 25) << "of " << solid;
     EXPECT_GT(leaves_moved, leaves / 2);
     EXPECT_GT(through, leaves / 100) << "of " << leaves;
 }

@@ -22,10 +22,15 @@ std::vector<double> evenly(int n, double top, double bottom)
     return e;
 }
 
+/** How far a Velodyne's firings drift against its turns (Sensor::column_drift), in columns; by
+ *  how much depends on its motor's speed. 0.382 (1 - 1 / golden ratio) spreads the phases of a
+ *  short clip evenly over the column, never the same twice. */
+constexpr double kVelodyneDrift = 0.381966;
+
 /** A spinning sensor whose beams lie at the elevations `table` (degrees, any order),
- *  `columns` a turn. */
+ *  `columns` a turn, its firings drifting by `column_drift` a turn. */
 Sensor spinningAt(const char* name, const char* description, std::vector<double> table, int columns,
-                  double max_range)
+                  double max_range, double column_drift)
 {
     Sensor s;
     s.name = name;
@@ -34,27 +39,29 @@ Sensor spinningAt(const char* name, const char* description, std::vector<double>
     s.elevations_deg = std::move(table);
     s.columns = columns;
     s.max_range = max_range;
+    s.column_drift = column_drift;
     return s;
 }
 
 /** A spinning sensor: `beams` evenly from `top` to `bottom` degrees, `columns` a turn. */
 Sensor spinning(const char* name, const char* description, int beams, double top, double bottom,
-                int columns, double max_range)
+                int columns, double max_range, double column_drift)
 {
-    return spinningAt(name, description, evenly(beams, top, bottom), columns, max_range);
+    return spinningAt(name, description, evenly(beams, top, bottom), columns, max_range,
+                      column_drift);
 }
 
 std::vector<Sensor> makeSensors()
 {
     std::vector<Sensor> s{
         spinning("hdl-64e", "64 beams, +2 to -24.8 degrees, 1024 columns, 80 m (KITTI's)", 64, 2.0,
-                 -24.8, 1024, 80.0),
+                 -24.8, 1024, 80.0, kVelodyneDrift),
         spinning("hdl-32e", "32 beams, +10.67 to -30.67 degrees (1.33 apart), 1800 columns, 100 m",
-                 32, 10.67, -30.67, 1800, 100.0),
+                 32, 10.67, -30.67, 1800, 100.0, kVelodyneDrift),
         spinning("vlp-16", "16 beams, +15 to -15 degrees (2 apart), 1800 columns, 100 m", 16, 15.0,
-                 -15.0, 1800, 100.0),
+                 -15.0, 1800, 100.0, kVelodyneDrift),
         spinning("os1-128", "128 beams, +22.5 to -22.5 degrees (0.35 apart), 1024 columns, 120 m",
-                 128, 22.5, -22.5, 1024, 120.0),
+                 128, 22.5, -22.5, 1024, 120.0, 0.0),  // fires at fixed encoder counts
         // The VLP-32C's beams as its manual lists them: a third of a degree apart around the
         // horizon, up to 9 degrees apart at the bottom and top of its view.
         spinningAt("vlp-32c",
@@ -64,7 +71,7 @@ std::vector<Sensor> makeSensors()
                     -7.254, 0.333, -0.333, -6.148,  -5.333, 1.333, 0.667,  -4.0,
                     -4.667, 1.667, 1.0,    -3.667,  -3.333, 3.333, 2.333,  -2.667,
                     -3.0,   7.0,   4.667,  -2.333,  -2.0,   15.0,  10.333, -1.333},
-                   1800, 200.0)};
+                   1800, 200.0, kVelodyneDrift)};
     Sensor livox;
     livox.name = "mid-70";
     livox.description =
@@ -89,12 +96,15 @@ void Sensor::directions(double t, double scan_period, std::vector<Eigen::Vector3
     out.clear();
     if (rosette_points == 0)
     {
+        // The turn's firing phase: its drift from the first turn, within one column.
+        const double turn = std::round(t / scan_period);
+        const double phase = turn * column_drift - std::floor(turn * column_drift);
         for (const double el_deg : elevations_deg)
         {
             const double el = el_deg * M_PI / 180.0;
             for (int c = 0; c < columns; ++c)
             {
-                const double az = 2.0 * M_PI * c / columns;
+                const double az = 2.0 * M_PI * (c + phase) / columns;
                 out.emplace_back(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az),
                                  std::sin(el));
             }

@@ -23,6 +23,11 @@ struct Sensor
      *  `columns` azimuth steps per turn (one turn a scan). Empty for a rosette. */
     std::vector<double> elevations_deg;
     int columns = 0;
+    /** Spinning: how far, in columns, the firing azimuths move on from one turn to the next.
+     *  A Velodyne fires on its own clock while its motor turns, and a turn is not a whole
+     *  number of firings, so each scan samples the azimuths a fraction of a column away from
+     *  the last one's; an Ouster fires at fixed encoder positions, the same every turn (0). */
+    double column_drift = 0.0;
     /** Rosette (two counter-rotating prisms, as Livox sensors scan): points per scan and the
      *  field of view's full angle, degrees, around the forward axis (+x). */
     std::size_t rosette_points = 0;
