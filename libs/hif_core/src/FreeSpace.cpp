@@ -1278,16 +1278,21 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
         while (last + 1 < pts.size && scan.repeats[last + 1]) ++last;
         return last;
     };
-    // An entry's verdict from its run's points' (`of`): its first point's, unless that is not
-    // gone and its last point's is known.
-    auto runVerdict = [&](uint32_t k, auto&& of)
+    // An entry's verdict from its run's points' (`of`, the run from input point `first` to
+    // `last`): its first point's, unless that is not gone and its last point's is known.
+    auto runVerdictOf = [&](uint32_t first, uint32_t last, auto&& of)
     {
-        const uint32_t first = scan.index[k], last = lastOfRun(first);
         const Verdict a = of(first);
         if (a == Verdict::Gone || last == first) return a;
         const Verdict b = of(last);
         if (b != Verdict::Unjudged) return b;
         return a;
+    };
+    // runVerdictOf() for entry k's run.
+    auto runVerdict = [&](uint32_t k, auto&& of)
+    {
+        const uint32_t first = scan.index[k];
+        return runVerdictOf(first, lastOfRun(first), of);
     };
     // An entry's verdict by pointVerdict(), with a judge's beams into open sky counted or not.
     // Where neither end of its run is shown gone, the run's middle point is asked about a
@@ -1302,8 +1307,9 @@ std::size_t markSeenThrough(const PillarGrid& grid, const ScanBuckets& scan, con
     auto entryVerdict = [&](uint32_t k, bool sky)
     {
         const bool at_max = scan.at_max[k] != 0;
-        const Verdict v = runVerdict(k, [&](uint32_t i) { return pointVerdict(i, sky, at_max); });
         const uint32_t first = scan.index[k], last = lastOfRun(first);
+        const Verdict v =
+            runVerdictOf(first, last, [&](uint32_t i) { return pointVerdict(i, sky, at_max); });
         if (v == Verdict::Gone || last - first < 2) return v;
         return pointVerdict(first + (last - first) / 2, sky, at_max, true) == Verdict::Gone
                    ? Verdict::Gone
